@@ -1,0 +1,101 @@
+// Typed description of a case, produced by io::read_case from a YAML file.
+// Solvers read these structs, never YAML. Defaults are SPEC's.
+#pragma once
+#include "surge/core/types.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace surge {
+
+struct Box {
+  Vec3d min{}, max{};
+  [[nodiscard]] bool contains(const Vec3d& p, double tol = 0) const {
+    return p.x >= min.x - tol && p.x <= max.x + tol && p.y >= min.y - tol && p.y <= max.y + tol &&
+           p.z >= min.z - tol && p.z <= max.z + tol;
+  }
+};
+
+struct TimeConfig {
+  double end = 1.0;
+  double output_every = 0.02;
+  double gauge_every = 0.0;   // 0: every output_every / 10
+  double dt_min = 0.0;        // 0: 1e-3 of the first time step; below this the run is stopped
+};
+
+struct SphConfig {
+  double h_over_dp = 1.2;
+  double alpha = 0.01;
+  double delta = 0.1;
+  double eta = 20.0;
+  double cfl = 0.2;
+  double rho0 = 1000.0;
+  double hmax = 0.0;          // 0: from the fluid regions (highest water top - lowest water bottom)
+  std::string integrator = "verlet";  // verlet | symplectic
+  int euler_every = 40;
+  double rho_min = 0.7;       // removal bounds, as fractions of rho0
+  double rho_max = 1.3;
+  double max_removed_share = 0.05;  // stop the run beyond this share of fluid particles removed
+  bool hydrostatic_init = true;     // start fluid density from the hydrostatic pressure
+};
+
+struct FluidRegion {
+  Box box;
+  Vec3d velocity{};
+  int line = 0;
+};
+
+enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };
+
+struct WallSpec {
+  std::string name;           // for force gauges
+  bool is_mesh = false;
+  Box box;                    // box walls: the tank interior, or the solid obstacle
+  bool solid = false;         // box: particles fill the inside instead of surrounding it
+  std::vector<Face> open;     // box tank: faces left without wall
+  std::string mesh;           // as written in the case file
+  std::string mesh_path;      // resolved against the case file's folder
+  int line = 0;
+};
+
+enum class GaugeType { Height, Pressure, Velocity, Force };
+
+struct GaugeSpec {
+  std::string name;
+  GaugeType type = GaugeType::Height;
+  double x = 0, y = 0;        // height gauges
+  Vec3d at{};                 // pressure / velocity gauges
+  std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag
+  std::string wall;           // force gauges: name of the wall
+  int line = 0;
+};
+
+struct Case {
+  std::string name = "case";
+  std::string source;         // file it came from
+  double dp = 0.0;
+  TimeConfig time;
+  Vec3d gravity{0, 0, -9.81};
+  Box domain;
+  SphConfig sph;
+  std::vector<FluidRegion> fluid;
+  std::vector<WallSpec> walls;
+  std::vector<GaugeSpec> gauges;
+
+  [[nodiscard]] double h() const { return sph.h_over_dp * dp; }
+  [[nodiscard]] double water_depth() const {
+    if (sph.hmax > 0) return sph.hmax;
+    double lo = 1e300, hi = -1e300;
+    for (const auto& f : fluid) { lo = std::min(lo, f.box.min.z); hi = std::max(hi, f.box.max.z); }
+    return fluid.empty() ? 0.0 : hi - lo;
+  }
+  [[nodiscard]] double g() const { return norm(gravity); }
+};
+
+inline const char* face_name(Face f) {
+  constexpr const char* names[] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  return names[static_cast<int>(f)];
+}
+
+} // namespace surge

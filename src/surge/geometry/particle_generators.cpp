@@ -1,0 +1,120 @@
+#include "surge/geometry/particle_generators.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace surge::geometry {
+
+int wall_layers(const Case& c) { return static_cast<int>(std::ceil(2.0 * c.sph.h_over_dp - 1e-9)); }
+
+namespace {
+// Coordinates (i + 1/2) dp from lo up to hi.
+std::vector<double> lattice(double lo, double hi, double dp) {
+  std::vector<double> v;
+  const auto n = static_cast<long>(std::floor((hi - lo) / dp + 1e-9));
+  for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * dp);
+  return v;
+}
+bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.open.end(), f) != w.open.end(); }
+
+// Signed distance to the closest triangle, positive on the side the normals point to.
+double signed_distance(const Mesh& m, const Vec3d& p) {
+  double best = 1e300, best_sign = 1, best_align = -1;
+  for (const auto& t : m.tris) {
+    const Vec3d c = closest_point(t, p);
+    const Vec3d d = p - c;
+    const double dist = norm(d);
+    const double side = dot(d, t.normal());
+    // Several triangles can share the closest point (an edge or vertex): take the one
+    // whose normal is best aligned with p - c, which decides the side correctly.
+    const double align = dist > 0 ? std::fabs(side) / dist : 1;
+    if (dist < best - 1e-12 || (std::fabs(dist - best) <= 1e-12 && align > best_align)) {
+      best = dist;
+      best_sign = side < 0 ? -1 : 1;
+      best_align = align;
+    }
+  }
+  return best * best_sign;
+}
+} // namespace
+
+std::vector<Vec3d> fill_box(const Box& b, double dp) {
+  std::vector<Vec3d> pts;
+  const auto xs = lattice(b.min.x, b.max.x, dp), ys = lattice(b.min.y, b.max.y, dp), zs = lattice(b.min.z, b.max.z, dp);
+  pts.reserve(xs.size() * ys.size() * zs.size());
+  for (double z : zs)
+    for (double y : ys)
+      for (double x : xs) pts.push_back({x, y, z});
+  return pts;
+}
+
+std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
+  std::vector<Vec3d> pts;
+  const Box& b = w.box;
+  if (w.solid) {
+    const double band = layers * dp;
+    for (const auto& p : fill_box(b, dp)) {
+      const double d = std::min({p.x - b.min.x, b.max.x - p.x, p.y - b.min.y, b.max.y - p.y, p.z - b.min.z, b.max.z - p.z});
+      if (d < band) pts.push_back(p);
+    }
+    return pts;
+  }
+  // Per axis: layers below, the interior (spacing stretched to fit exactly), layers above.
+  // Each coordinate carries -1 (below), 0 (inside) or +1 (above).
+  struct C { double v; int side; };
+  auto axis = [&](double lo, double hi) {
+    std::vector<C> v;
+    for (int k = layers - 1; k >= 0; --k) v.push_back({lo - (k + 0.5) * dp, -1});
+    const long n = std::max(1L, std::lround((hi - lo) / dp));
+    const double s = (hi - lo) / static_cast<double>(n);
+    for (long i = 0; i < n; ++i) v.push_back({lo + (static_cast<double>(i) + 0.5) * s, 0});
+    for (int k = 0; k < layers; ++k) v.push_back({hi + (k + 0.5) * dp, 1});
+    return v;
+  };
+  const auto xs = axis(b.min.x, b.max.x), ys = axis(b.min.y, b.max.y), zs = axis(b.min.z, b.max.z);
+  const Face lowf[3] = {Face::XMin, Face::YMin, Face::ZMin}, highf[3] = {Face::XMax, Face::YMax, Face::ZMax};
+  for (const auto& z : zs)
+    for (const auto& y : ys)
+      for (const auto& x : xs) {
+        const int side[3] = {x.side, y.side, z.side};
+        if (side[0] == 0 && side[1] == 0 && side[2] == 0) continue;
+        bool skip = false;
+        for (int k = 0; k < 3; ++k)
+          if ((side[k] < 0 && is_open(w, lowf[k])) || (side[k] > 0 && is_open(w, highf[k]))) skip = true;
+        if (!skip) pts.push_back({x.v, y.v, z.v});
+      }
+  return pts;
+}
+
+std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers) {
+  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const auto& t : m.tris)
+    for (const Vec3d& v : {t.a, t.b, t.c})
+      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], v[k]); hi[k] = std::max(hi[k], v[k]); }
+  const double band = layers * dp;
+  long i0[3], i1[3];
+  for (int k = 0; k < 3; ++k) {
+    i0[k] = static_cast<long>(std::floor((lo[k] - band - origin[k]) / dp - 0.5));
+    i1[k] = static_cast<long>(std::ceil((hi[k] + band - origin[k]) / dp - 0.5));
+  }
+  std::vector<Vec3d> pts;
+  for (long iz = i0[2]; iz <= i1[2]; ++iz)
+    for (long iy = i0[1]; iy <= i1[1]; ++iy)
+      for (long ix = i0[0]; ix <= i1[0]; ++ix) {
+        const Vec3d p{origin.x + (static_cast<double>(ix) + 0.5) * dp, origin.y + (static_cast<double>(iy) + 0.5) * dp,
+                      origin.z + (static_cast<double>(iz) + 0.5) * dp};
+        const double d = signed_distance(m, p);
+        if (d <= 0 && d > -band) pts.push_back(p);
+      }
+  return pts;
+}
+
+bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {
+  if (w.is_mesh) {
+    const double d = signed_distance(*mesh, p);
+    return d < 0.5 * dp && d > -4 * dp;
+  }
+  return w.solid && w.box.contains(p, 0.5 * dp);
+}
+
+} // namespace surge::geometry

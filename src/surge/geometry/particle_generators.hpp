@@ -1,0 +1,27 @@
+// Turns the case's regions into particles: fluid lattices, wall layers from
+// boxes and triangle meshes. Positions are absolute (double); the caller
+// shifts them to the case origin.
+#pragma once
+#include "surge/core/case.hpp"
+#include "surge/geometry/stl_mesh.hpp"
+
+#include <vector>
+
+namespace surge::geometry {
+
+// Number of wall layers that fill the kernel support: ceil(2h/dp).
+int wall_layers(const Case& c);
+
+// Lattice points (i + 1/2) dp inside the box.
+std::vector<Vec3d> fill_box(const Box& b, double dp);
+// Layers of thickness `layers` dp around a tank box (outside it, faces in `open` left out),
+// or inside it when `solid`.
+std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers);
+// Lattice points (aligned to `origin` + (i + 1/2) dp) behind the mesh surface
+// (the side its normals point away from) within layers * dp of it.
+std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers);
+// True if a fluid particle at p would overlap wall w (inside a solid box, or
+// behind or within dp/2 of a mesh surface).
+bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
+
+} // namespace surge::geometry

@@ -1,0 +1,460 @@
+#include "surge/io/case_reader.hpp"
+
+#include "surge/core/error.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace surge::io {
+namespace {
+
+// Walks a YAML tree, remembering the file and the key path for messages.
+class Reader {
+public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& key, const std::string& msg) const {
+    int line = 0;
+    if (n.IsDefined() && !n.Mark().is_null()) line = n.Mark().line + 1;
+    std::string m = msg;
+    if (overridden(key)) m += " (value given by --set " + key + ")";
+    throw InputError(file_, line, key, m);
+  }
+  [[nodiscard]] bool overridden(const std::string& key) const {
+    return std::any_of(set_keys_.begin(), set_keys_.end(), [&](const std::string& k) { return k == key; });
+  }
+  void note_override(const std::string& key) { set_keys_.push_back(key); }
+
+  // Rejects keys not in `allowed` (typos), suggesting the closest allowed one.
+  void check_keys(const YAML::Node& map, const std::string& path, std::initializer_list<const char*> allowed) const {
+    if (!map.IsMap()) fail(map, path, "expected a mapping (key: value pairs)");
+    for (const auto& kv : map) {
+      const auto k = kv.first.as<std::string>();
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || k == a;
+      if (ok) continue;
+      std::string best;
+      std::size_t best_d = 3;
+      for (const char* a : allowed) {
+        const std::size_t d = distance(k, a);
+        if (d < best_d) { best_d = d; best = a; }
+      }
+      std::string msg = "unknown key";
+      if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+      else {
+        msg += "; allowed here:";
+        for (const char* a : allowed) msg += std::string(" ") + a;
+      }
+      fail(kv.first, join(path, k), msg);
+    }
+  }
+
+  template <class T>
+  T get(const YAML::Node& map, const std::string& path, const char* key, T fallback) const {
+    const YAML::Node n = map[key];
+    if (!n.IsDefined() || n.IsNull()) return fallback;
+    return as<T>(n, join(path, key));
+  }
+  template <class T>
+  T require(const YAML::Node& map, const std::string& path, const char* key) const {
+    const YAML::Node n = map[key];
+    if (!n.IsDefined() || n.IsNull()) fail(map, join(path, key), "is required");
+    return as<T>(n, join(path, key));
+  }
+
+  template <class T>
+  T as(const YAML::Node& n, const std::string& key) const {
+    if constexpr (std::is_same_v<T, Vec3d>) {
+      if (!n.IsSequence() || n.size() != 3) fail(n, key, "expected a list of three numbers, like [0, 0, 1]");
+      return {as<double>(n[0], key), as<double>(n[1], key), as<double>(n[2], key)};
+    } else {
+      if (!n.IsScalar()) fail(n, key, std::string("expected ") + type_name<T>());
+      try {
+        T v = n.as<T>();
+        if constexpr (std::is_floating_point_v<T>) {
+          if (!std::isfinite(v)) fail(n, key, "must be a finite number");
+        }
+        return v;
+      } catch (const YAML::Exception&) {
+        fail(n, key, std::string("expected ") + type_name<T>() + ", got '" + n.Scalar() + "'");
+      }
+    }
+  }
+
+  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+  [[nodiscard]] const std::string& file() const { return file_; }
+
+private:
+  template <class T> static const char* type_name() {
+    if constexpr (std::is_same_v<T, bool>) return "true or false";
+    else if constexpr (std::is_integral_v<T>) return "an integer";
+    else if constexpr (std::is_floating_point_v<T>) return "a number";
+    else return "a string";
+  }
+  static std::size_t distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> d(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t prev = d[0];
+      d[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t cur = d[j];
+        d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] == b[j - 1] ? 0U : 1U)});
+        prev = cur;
+      }
+    }
+    return d[b.size()];
+  }
+  std::string file_;
+  std::vector<std::string> set_keys_;
+};
+
+// Applies "a.b.c=value" to the tree; list elements are addressed by index ("fluid.0.box.min").
+void apply_override(YAML::Node root, const std::string& assignment, Reader& r) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set", 0, assignment, "expected KEY=VALUE, like --set dp=0.02");
+  const std::string key = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw InputError("--set", 0, key, std::string("value is not valid YAML: ") + e.msg);
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node cur = chain.back();
+    if (cur.IsSequence()) {
+      std::size_t idx = 0;
+      try { idx = std::stoul(parts[i]); } catch (...) {
+        throw InputError("--set", 0, key, "'" + parts[i] + "' should be a list index");
+      }
+      if (idx >= cur.size()) throw InputError("--set", 0, key, "list index " + parts[i] + " out of range");
+      chain.push_back(cur[idx]);
+    } else {
+      chain.push_back(cur[parts[i]]);
+    }
+  }
+  YAML::Node parent = chain.back();
+  if (parent.IsSequence()) {
+    std::size_t idx = 0;
+    try { idx = std::stoul(parts.back()); } catch (...) {
+      throw InputError("--set", 0, key, "'" + parts.back() + "' should be a list index");
+    }
+    if (idx >= parent.size()) throw InputError("--set", 0, key, "list index out of range");
+    parent[idx] = value;
+  } else {
+    parent[parts.back()] = value;
+  }
+  r.note_override(key);
+}
+
+Face parse_face(const Reader& r, const YAML::Node& n, const std::string& key) {
+  const auto s = r.as<std::string>(n, key);
+  constexpr Face all[] = {Face::XMin, Face::XMax, Face::YMin, Face::YMax, Face::ZMin, Face::ZMax};
+  for (Face f : all)
+    if (s == face_name(f)) return f;
+  r.fail(n, key, "unknown face '" + s + "'; use xmin, xmax, ymin, ymax, zmin or zmax");
+}
+
+Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
+  r.check_keys(n, path, {"min", "max"});
+  Box b{r.require<Vec3d>(n, path, "min"), r.require<Vec3d>(n, path, "max")};
+  for (int k = 0; k < 3; ++k)
+    if (!(b.max[k] > b.min[k])) r.fail(n["max"], Reader::join(path, "max"), "every component of max must exceed min");
+  return b;
+}
+
+Case parse(const YAML::Node& root, Reader& r) {
+  Case c;
+  if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
+  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges"});
+  c.name = r.require<std::string>(root, "", "name");
+  if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos)
+    r.fail(root["name"], "name", "must be a non-empty name without slashes");
+  c.dp = r.require<double>(root, "", "dp");
+  if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
+
+  if (const auto t = root["time"]; t.IsDefined()) {
+    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min"});
+    c.time.end = r.get(t, "time", "end", c.time.end);
+    c.time.output_every = r.get(t, "time", "output_every", c.time.output_every);
+    c.time.gauge_every = r.get(t, "time", "gauge_every", c.time.gauge_every);
+    c.time.dt_min = r.get(t, "time", "dt_min", c.time.dt_min);
+    if (!(c.time.end > 0)) r.fail(t["end"], "time.end", "must be positive");
+    if (!(c.time.output_every > 0)) r.fail(t["output_every"], "time.output_every", "must be positive");
+    if (c.time.gauge_every < 0) r.fail(t["gauge_every"], "time.gauge_every", "must not be negative");
+    if (c.time.dt_min < 0) r.fail(t["dt_min"], "time.dt_min", "must not be negative");
+  }
+  if (c.time.gauge_every == 0) c.time.gauge_every = c.time.output_every / 10;
+  c.gravity = r.get(root, "", "gravity", c.gravity);
+  if (!(norm(c.gravity) > 0)) r.fail(root["gravity"], "gravity", "must not be zero (c0 is derived from g)");
+
+  c.domain = parse_box(r, root["domain"].IsDefined() ? root["domain"] : (r.fail(root, "domain", "is required"), root), "domain");
+
+  if (const auto s = root["sph"]; s.IsDefined()) {
+    r.check_keys(s, "sph", {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "integrator", "euler_every",
+                            "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
+    auto& p = c.sph;
+    p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
+    p.alpha = r.get(s, "sph", "alpha", p.alpha);
+    p.delta = r.get(s, "sph", "delta", p.delta);
+    p.eta = r.get(s, "sph", "eta", p.eta);
+    p.cfl = r.get(s, "sph", "cfl", p.cfl);
+    p.rho0 = r.get(s, "sph", "rho0", p.rho0);
+    p.hmax = r.get(s, "sph", "hmax", p.hmax);
+    p.integrator = r.get(s, "sph", "integrator", p.integrator);
+    p.euler_every = r.get(s, "sph", "euler_every", p.euler_every);
+    p.rho_min = r.get(s, "sph", "rho_min", p.rho_min);
+    p.rho_max = r.get(s, "sph", "rho_max", p.rho_max);
+    p.max_removed_share = r.get(s, "sph", "max_removed_share", p.max_removed_share);
+    p.hydrostatic_init = r.get(s, "sph", "hydrostatic_init", p.hydrostatic_init);
+    auto positive = [&](double v, const char* k) {
+      if (!(v > 0)) r.fail(s[k], std::string("sph.") + k, "must be positive");
+    };
+    positive(p.h_over_dp, "h_over_dp");
+    positive(p.eta, "eta");
+    positive(p.cfl, "cfl");
+    positive(p.rho0, "rho0");
+    if (p.alpha < 0) r.fail(s["alpha"], "sph.alpha", "must not be negative");
+    if (p.delta < 0) r.fail(s["delta"], "sph.delta", "must not be negative");
+    if (p.hmax < 0) r.fail(s["hmax"], "sph.hmax", "must not be negative");
+    if (p.integrator != "verlet" && p.integrator != "symplectic")
+      r.fail(s["integrator"], "sph.integrator", "must be verlet or symplectic");
+    if (p.euler_every < 1) r.fail(s["euler_every"], "sph.euler_every", "must be at least 1");
+    if (!(p.rho_min > 0 && p.rho_min < 1)) r.fail(s["rho_min"], "sph.rho_min", "must lie in (0, 1)");
+    if (!(p.rho_max > 1)) r.fail(s["rho_max"], "sph.rho_max", "must exceed 1");
+    if (!(p.max_removed_share > 0 && p.max_removed_share <= 1))
+      r.fail(s["max_removed_share"], "sph.max_removed_share", "must lie in (0, 1]");
+  }
+
+  const YAML::Node fluid = root["fluid"];
+  if (fluid.IsDefined() && !fluid.IsNull()) {
+    if (!fluid.IsSequence()) r.fail(fluid, "fluid", "expected a list of regions, like [{box: {min: [..], max: [..]}}]");
+    for (std::size_t i = 0; i < fluid.size(); ++i) {
+      const std::string path = "fluid." + std::to_string(i);
+      const YAML::Node f = fluid[i];
+      r.check_keys(f, path, {"box", "velocity"});
+      FluidRegion reg;
+      if (!f["box"].IsDefined()) r.fail(f, path + ".box", "is required");
+      reg.box = parse_box(r, f["box"], path + ".box");
+      reg.velocity = r.get(f, path, "velocity", reg.velocity);
+      reg.line = f.Mark().line + 1;
+      if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
+        r.fail(f["box"], path + ".box", "fluid region lies (partly) outside the domain; enlarge domain or move the water");
+      const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-9); };
+      if (cells(0) < 1 || cells(1) < 1 || cells(2) < 1)
+        r.fail(f["box"], path + ".box", "fluid region is thinner than dp and would hold no particle");
+      c.fluid.push_back(reg);
+    }
+  }
+
+  const YAML::Node walls = root["walls"];
+  if (walls.IsDefined() && !walls.IsNull()) {
+    if (!walls.IsSequence()) r.fail(walls, "walls", "expected a list of walls");
+    const auto dir = std::filesystem::path(r.file()).parent_path();
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const std::string path = "walls." + std::to_string(i);
+      const YAML::Node w = walls[i];
+      r.check_keys(w, path, {"name", "box", "open", "solid", "mesh"});
+      WallSpec ws;
+      ws.name = r.get<std::string>(w, path, "name", "wall" + std::to_string(i));
+      ws.line = w.Mark().line + 1;
+      const bool has_box = w["box"].IsDefined(), has_mesh = w["mesh"].IsDefined();
+      if (has_box == has_mesh) r.fail(w, path, "a wall needs exactly one of 'box' or 'mesh'");
+      if (has_box) {
+        ws.box = parse_box(r, w["box"], path + ".box");
+        ws.solid = r.get(w, path, "solid", false);
+        if (const auto o = w["open"]; o.IsDefined()) {
+          if (!o.IsSequence()) r.fail(o, path + ".open", "expected a list of faces, like [zmax]");
+          for (std::size_t k = 0; k < o.size(); ++k) ws.open.push_back(parse_face(r, o[k], path + ".open"));
+        }
+      } else {
+        if (w["open"].IsDefined() || w["solid"].IsDefined())
+          r.fail(w, path, "'open' and 'solid' apply to box walls only");
+        ws.is_mesh = true;
+        ws.mesh = r.as<std::string>(w["mesh"], path + ".mesh");
+        std::filesystem::path mp(ws.mesh);
+        if (mp.is_relative()) mp = dir / mp;
+        ws.mesh_path = mp.string();
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(mp, ec))
+          r.fail(w["mesh"], path + ".mesh", "mesh file '" + mp.string() + "' not found");
+      }
+      for (const auto& other : c.walls)
+        if (other.name == ws.name) r.fail(w, path + ".name", "duplicate wall name '" + ws.name + "'");
+      c.walls.push_back(ws);
+    }
+  }
+
+  const YAML::Node gauges = root["gauges"];
+  if (gauges.IsDefined() && !gauges.IsNull()) {
+    if (!gauges.IsSequence()) r.fail(gauges, "gauges", "expected a list of gauges");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < gauges.size(); ++i) {
+      const std::string path = "gauges." + std::to_string(i);
+      const YAML::Node g = gauges[i];
+      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall"});
+      GaugeSpec gs;
+      gs.line = g.Mark().line + 1;
+      gs.name = r.require<std::string>(g, path, "name");
+      if (gs.name.empty() || gs.name.find_first_of(",\"\n") != std::string::npos || gs.name == "time")
+        r.fail(g["name"], path + ".name", "gauge names must be non-empty, not 'time', without commas or quotes");
+      if (!names.insert(gs.name).second) r.fail(g["name"], path + ".name", "duplicate gauge name");
+      const auto type = r.require<std::string>(g, path, "type");
+      if (type == "height") {
+        gs.type = GaugeType::Height;
+        gs.x = r.require<double>(g, path, "x");
+        gs.y = r.require<double>(g, path, "y");
+        if (!c.domain.contains({gs.x, gs.y, c.domain.min.z}))
+          r.fail(g, path, "height gauge lies outside the domain");
+      } else if (type == "pressure" || type == "velocity") {
+        gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
+        gs.at = r.require<Vec3d>(g, path, "at");
+        if (!c.domain.contains(gs.at)) r.fail(g["at"], path + ".at", "gauge point lies outside the domain");
+      } else if (type == "force") {
+        gs.type = GaugeType::Force;
+        gs.wall = r.require<std::string>(g, path, "wall");
+        if (std::none_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) { return w.name == gs.wall; }))
+          r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
+      } else {
+        r.fail(g["type"], path + ".type", "unknown gauge type '" + type + "'; use height, pressure, velocity or force");
+      }
+      if (gs.type == GaugeType::Velocity || gs.type == GaugeType::Force) {
+        gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
+        if (gs.component != "x" && gs.component != "y" && gs.component != "z" && gs.component != "mag")
+          r.fail(g["component"], path + ".component", "must be x, y, z or mag");
+      } else if (g["component"].IsDefined()) {
+        r.fail(g["component"], path + ".component", "applies to velocity and force gauges only");
+      }
+      c.gauges.push_back(gs);
+    }
+  }
+  if (c.fluid.empty() && c.walls.empty()) r.fail(root, "fluid", "the case has neither fluid nor walls: nothing to simulate");
+  if (!c.fluid.empty() && !(c.water_depth() > 0)) r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
+  return c;
+}
+
+} // namespace
+
+Case read_case_text(const std::string& text, const std::string& filename, const Overrides& overrides) {
+  Reader r(filename);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(filename, e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw InputError(filename, 0, "", std::string("malformed YAML: ") + e.what());
+  }
+  if (!root.IsDefined() || root.IsNull()) throw InputError(filename, 0, "", "the case file is empty");
+  for (const auto& o : overrides) apply_override(root, o, r);
+  try {
+    Case c = parse(root, r);
+    c.source = filename;
+    return c;
+  } catch (const YAML::Exception& e) {
+    throw InputError(filename, e.mark.is_null() ? 0 : e.mark.line + 1, "", std::string("invalid case: ") + e.what());
+  }
+}
+
+Case read_case(const std::string& path, const Overrides& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the case file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return read_case_text(ss.str(), path, overrides);
+}
+
+std::string to_yaml(const Case& c) {
+  YAML::Emitter e;
+  e.SetDoublePrecision(12);
+  auto vec = [&](const Vec3d& v) { e << YAML::Flow << YAML::BeginSeq << v.x << v.y << v.z << YAML::EndSeq; };
+  auto box = [&](const Box& b) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "min" << YAML::Value;
+    vec(b.min);
+    e << YAML::Key << "max" << YAML::Value;
+    vec(b.max);
+    e << YAML::EndMap;
+  };
+  e << YAML::BeginMap;
+  e << YAML::Key << "name" << YAML::Value << c.name;
+  e << YAML::Key << "dp" << YAML::Value << c.dp;
+  e << YAML::Key << "time" << YAML::Value << YAML::BeginMap << YAML::Key << "end" << YAML::Value << c.time.end
+    << YAML::Key << "output_every" << YAML::Value << c.time.output_every << YAML::Key << "gauge_every" << YAML::Value
+    << c.time.gauge_every << YAML::Key << "dt_min" << YAML::Value << c.time.dt_min << YAML::EndMap;
+  e << YAML::Key << "gravity" << YAML::Value;
+  vec(c.gravity);
+  e << YAML::Key << "domain" << YAML::Value;
+  box(c.domain);
+  const auto& s = c.sph;
+  e << YAML::Key << "sph" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "h_over_dp" << YAML::Value << s.h_over_dp << YAML::Key << "alpha" << YAML::Value << s.alpha;
+  e << YAML::Key << "delta" << YAML::Value << s.delta << YAML::Key << "eta" << YAML::Value << s.eta;
+  e << YAML::Key << "cfl" << YAML::Value << s.cfl << YAML::Key << "rho0" << YAML::Value << s.rho0;
+  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "integrator" << YAML::Value << s.integrator;
+  e << YAML::Key << "euler_every" << YAML::Value << s.euler_every << YAML::Key << "rho_min" << YAML::Value << s.rho_min;
+  e << YAML::Key << "rho_max" << YAML::Value << s.rho_max << YAML::Key << "max_removed_share" << YAML::Value
+    << s.max_removed_share << YAML::Key << "hydrostatic_init" << YAML::Value << s.hydrostatic_init;
+  e << YAML::EndMap;
+  e << YAML::Key << "fluid" << YAML::Value << YAML::BeginSeq;
+  for (const auto& f : c.fluid) {
+    e << YAML::BeginMap << YAML::Key << "box" << YAML::Value;
+    box(f.box);
+    e << YAML::Key << "velocity" << YAML::Value;
+    vec(f.velocity);
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+  e << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
+  for (const auto& w : c.walls) {
+    e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << w.name;
+    if (w.is_mesh) {
+      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+    } else {
+      e << YAML::Key << "box" << YAML::Value;
+      box(w.box);
+      e << YAML::Key << "solid" << YAML::Value << w.solid;
+      e << YAML::Key << "open" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (Face f : w.open) e << face_name(f);
+      e << YAML::EndSeq;
+    }
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+  e << YAML::Key << "gauges" << YAML::Value << YAML::BeginSeq;
+  for (const auto& g : c.gauges) {
+    e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << g.name;
+    switch (g.type) {
+    case GaugeType::Height:
+      e << YAML::Key << "type" << YAML::Value << "height" << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y"
+        << YAML::Value << g.y;
+      break;
+    case GaugeType::Pressure:
+    case GaugeType::Velocity:
+      e << YAML::Key << "type" << YAML::Value << (g.type == GaugeType::Pressure ? "pressure" : "velocity");
+      e << YAML::Key << "at" << YAML::Value;
+      vec(g.at);
+      if (g.type == GaugeType::Velocity) e << YAML::Key << "component" << YAML::Value << g.component;
+      break;
+    case GaugeType::Force:
+      e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall
+        << YAML::Key << "component" << YAML::Value << g.component;
+      break;
+    }
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::EndMap;
+  return std::string(e.c_str()) + "\n";
+}
+
+} // namespace surge::io

@@ -1,0 +1,66 @@
+#include "surge/neighbour/uniform_grid.hpp"
+
+#include "surge/algo/algo.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace surge::neighbour {
+
+GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius) {
+  if (!(radius > 0)) throw std::invalid_argument("grid cell size must be positive");
+  GridSpec s;
+  s.lo = lo;
+  s.cell = radius;
+  auto count = [&](Real a, Real b) {
+    const double n = std::floor(static_cast<double>(b - a) / static_cast<double>(radius)) + 1.0;
+    return n < 1.0 ? 1 : static_cast<int>(n);
+  };
+  s.nx = count(lo.x, hi.x);
+  s.ny = count(lo.y, hi.y);
+  s.nz = count(lo.z, hi.z);
+  if (static_cast<double>(s.nx) * s.ny * s.nz > 4.0e9)
+    throw std::invalid_argument("neighbour grid too large: domain / (2h) exceeds 4e9 cells");
+  return s;
+}
+
+void UniformGrid::sort(const Vec3* pos, const std::uint8_t* dead, int n) {
+  keys_.resize(static_cast<std::size_t>(n));
+  perm_.resize(static_cast<std::size_t>(n));
+  std::uint32_t* keys = keys_.data();
+  const GridSpec s = spec_;
+  const std::uint32_t sentinel = s.cells();
+  par::parallel_for(n, SURGE_LAMBDA(int i) { keys[i] = (dead && dead[i]) ? sentinel : s.key(pos[i]); });
+  algo::iota(perm_.data(), n);
+  algo::sort_by_key(keys, perm_.data(), n);
+}
+
+int UniformGrid::build_cell_start(int n) {
+  const std::uint32_t ncell = spec_.cells();
+  cell_start_.resize(static_cast<std::size_t>(ncell) + 1);
+  std::uint32_t* start = cell_start_.data();
+  const std::uint32_t* keys = keys_.data();
+  if (n == 0) {
+    par::fill(cell_start_, 0U);
+    return 0;
+  }
+  // Every cell c gets the first index whose key is >= c; each entry is written once:
+  // by the particle where the key jumps past it, or by the tail loop.
+  par::parallel_for(n, SURGE_LAMBDA(int i) {
+    const std::uint32_t prev = i == 0 ? 0U : keys[i - 1] + 1U;
+    const std::uint32_t k = keys[i] < ncell ? keys[i] : ncell;
+    for (std::uint32_t c = prev; c <= k; ++c) start[c] = static_cast<std::uint32_t>(i);
+    if (i == n - 1) {
+      for (std::uint32_t c = k + 1; c <= ncell; ++c) start[c] = static_cast<std::uint32_t>(n);
+    }
+  });
+  std::vector<std::uint32_t> live(1);
+#if defined(SURGE_BACKEND_CUDA)
+  par::check_cuda(cudaMemcpy(live.data(), start + ncell, sizeof(std::uint32_t), cudaMemcpyDeviceToHost), "cell_start");
+#else
+  live[0] = start[ncell];
+#endif
+  return static_cast<int>(live[0]);
+}
+
+} // namespace surge::neighbour

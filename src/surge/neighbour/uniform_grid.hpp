@@ -1,0 +1,80 @@
+// Uniform-grid neighbour search (SPEC §5): cell keys, sort, cell start table,
+// and the one neighbour loop every physics module uses.
+#pragma once
+#include "surge/par/parallel.hpp"
+
+#include <cstdint>
+
+namespace surge::neighbour {
+
+struct GridSpec {
+  Vec3 lo{};     // lower corner, in the case's local coordinates
+  Real cell = 1; // cell edge, >= interaction radius
+  int nx = 1, ny = 1, nz = 1;
+
+  [[nodiscard]] SURGE_HD std::uint32_t cells() const { return static_cast<std::uint32_t>(nx) * ny * nz; }
+  [[nodiscard]] SURGE_HD int coord(Real x, Real lo_c, int n) const {
+    int c = static_cast<int>((x - lo_c) / cell);
+    return c < 0 ? 0 : (c >= n ? n - 1 : c);
+  }
+  [[nodiscard]] SURGE_HD std::uint32_t key(const Vec3& p) const {
+    const int cx = coord(p.x, lo.x, nx), cy = coord(p.y, lo.y, ny), cz = coord(p.z, lo.z, nz);
+    return static_cast<std::uint32_t>(cx + nx * (cy + ny * cz));
+  }
+};
+
+// Builds a grid over [lo, hi] with cells of at least `radius`.
+GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius);
+
+// What a kernel needs to walk neighbours: the grid, the sorted positions and
+// cell_start (cells()+1 entries; cell c holds particles [start[c], start[c+1])).
+struct GridView {
+  GridSpec spec;
+  const std::uint32_t* cell_start = nullptr;
+  const Vec3* pos = nullptr;
+};
+
+// Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
+// scanning the 27 cells around x as 9 contiguous rows. Includes x's own particle.
+template <class F>
+SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
+  const GridSpec& s = g.spec;
+  const int cx = s.coord(x.x, s.lo.x, s.nx), cy = s.coord(x.y, s.lo.y, s.ny), cz = s.coord(x.z, s.lo.z, s.nz);
+  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < s.nx ? cx + 1 : s.nx - 1;
+  for (int z = cz - 1; z <= cz + 1; ++z) {
+    if (z < 0 || z >= s.nz) continue;
+    for (int y = cy - 1; y <= cy + 1; ++y) {
+      if (y < 0 || y >= s.ny) continue;
+      const int row = s.nx * (y + s.ny * z);
+      const std::uint32_t end = g.cell_start[row + x1 + 1];
+      for (std::uint32_t j = g.cell_start[row + x0]; j < end; ++j) {
+        const Vec3 d = x - g.pos[j];
+        const Real r2 = dot(d, d);
+        if (r2 < r2max) f(static_cast<int>(j), d, r2);
+      }
+    }
+  }
+}
+
+// Sorting state: keys, the permutation of the last sort, the cell start table.
+class UniformGrid {
+public:
+  void set_spec(const GridSpec& s) { spec_ = s; }
+  [[nodiscard]] const GridSpec& spec() const { return spec_; }
+
+  // keys[i] = cell of pos[i], or cells() for particles flagged dead[i] != 0,
+  // then stable sort. After this, permutation()[i] is the old index of new i.
+  void sort(const Vec3* pos, const std::uint8_t* dead, int n);
+  // Builds cell_start from the sorted keys; returns the number of live particles.
+  int build_cell_start(int n);
+
+  [[nodiscard]] const std::uint32_t* permutation() const { return perm_.data(); }
+  [[nodiscard]] GridView view(const Vec3* sorted_pos) const { return {spec_, cell_start_.data(), sorted_pos}; }
+  [[nodiscard]] std::size_t bytes() const { return keys_.bytes() + perm_.bytes() + cell_start_.bytes(); }
+
+private:
+  GridSpec spec_;
+  par::Buffer<std::uint32_t> keys_, perm_, cell_start_;
+};
+
+} // namespace surge::neighbour

@@ -1,0 +1,193 @@
+// The single-source parallel layer: one loop body, run as an OpenMP loop on the
+// CPU build and as a kernel launch in the CUDA build. Loop bodies are lambdas
+// written with SURGE_LAMBDA and see only plain views (pointers and sizes).
+#pragma once
+#include "surge/core/types.hpp"
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#if defined(SURGE_BACKEND_CUDA)
+#include <cuda_runtime.h>
+#include <thrust/execution_policy.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/transform_reduce.h>
+#define SURGE_LAMBDA [=] __host__ __device__
+#else
+#include <omp.h>
+#define SURGE_LAMBDA [=]
+#endif
+
+namespace surge::par {
+
+#if defined(SURGE_BACKEND_CUDA)
+inline void check_cuda(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw std::runtime_error(std::string(what) + ": " + cudaGetErrorString(e));
+}
+template <class F>
+__global__ void for_kernel(int n, F f) {
+  const int i = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (i < n) f(i);
+}
+#endif
+
+inline const char* backend_name() {
+#if defined(SURGE_BACKEND_CUDA)
+  return "cuda";
+#else
+  return "openmp";
+#endif
+}
+
+// Number of CPU threads used by parallel loops (ignored by the CUDA backend).
+inline void set_threads(int n) {
+#if !defined(SURGE_BACKEND_CUDA)
+  if (n > 0) omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
+inline int threads() {
+#if !defined(SURGE_BACKEND_CUDA)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// f(i) for i in [0, n). Each i must write only to its own outputs.
+template <class F>
+void parallel_for(int n, F f) {
+  if (n <= 0) return;
+#if defined(SURGE_BACKEND_CUDA)
+  constexpr int block = 256;
+  for_kernel<<<(n + block - 1) / block, block>>>(n, f);
+  check_cuda(cudaGetLastError(), "kernel launch");
+#else
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) f(i);
+#endif
+}
+
+// op-reduction of f(i) over [0, n). op must be associative and commutative;
+// for floating-point sums the rounding depends on the thread count.
+template <class T, class F, class Op>
+T parallel_reduce(int n, T init, F f, Op op) {
+  if (n <= 0) return init;
+#if defined(SURGE_BACKEND_CUDA)
+  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<int>(0),
+                                  thrust::counting_iterator<int>(n), f, init, op);
+#else
+  T result = init;
+#pragma omp parallel
+  {
+    T local = init;
+#pragma omp for schedule(static) nowait
+    for (int i = 0; i < n; ++i) local = op(local, f(i));
+#pragma omp critical
+    result = op(result, local);
+  }
+  return result;
+#endif
+}
+
+struct Min {
+  template <class T> SURGE_HD T operator()(T a, T b) const { return b < a ? b : a; }
+};
+struct Max {
+  template <class T> SURGE_HD T operator()(T a, T b) const { return a < b ? b : a; }
+};
+struct Sum {
+  template <class T> SURGE_HD T operator()(T a, T b) const { return a + b; }
+};
+
+// Memory in the execution space: device memory under CUDA, host memory on the
+// CPU build. Host data reaches it only through the explicit copies below.
+template <class T>
+class Buffer {
+public:
+  Buffer() = default;
+  explicit Buffer(std::size_t n) { resize(n); }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  Buffer(Buffer&& o) noexcept : ptr_(o.ptr_), size_(o.size_), cap_(o.cap_) { o.ptr_ = nullptr; o.size_ = o.cap_ = 0; }
+  Buffer& operator=(Buffer&& o) noexcept {
+    if (this != &o) { release(); ptr_ = o.ptr_; size_ = o.size_; cap_ = o.cap_; o.ptr_ = nullptr; o.size_ = o.cap_ = 0; }
+    return *this;
+  }
+  ~Buffer() { release(); }
+
+  // Grows capacity without keeping contents; shrinking only changes size.
+  void resize(std::size_t n) {
+    if (n > cap_) {
+      release();
+#if defined(SURGE_BACKEND_CUDA)
+      check_cuda(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), "cudaMalloc");
+#else
+      ptr_ = static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64}));
+#endif
+      cap_ = n;
+    }
+    size_ = n;
+  }
+  // Shrinks the logical size, keeping contents.
+  void truncate(std::size_t n) { if (n < size_) size_ = n; }
+
+  [[nodiscard]] T* data() { return ptr_; }
+  [[nodiscard]] const T* data() const { return ptr_; }
+  [[nodiscard]] std::size_t size() const { return size_; }
+  [[nodiscard]] std::size_t bytes() const { return cap_ * sizeof(T); }
+  void swap(Buffer& o) noexcept { std::swap(ptr_, o.ptr_); std::swap(size_, o.size_); std::swap(cap_, o.cap_); }
+
+private:
+  void release() {
+    if (!ptr_) return;
+#if defined(SURGE_BACKEND_CUDA)
+    cudaFree(ptr_);
+#else
+    ::operator delete(ptr_, std::align_val_t{64});
+#endif
+    ptr_ = nullptr;
+    cap_ = size_ = 0;
+  }
+  T* ptr_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t cap_ = 0;
+};
+
+// Explicit host <-> execution-space copies.
+template <class T>
+void upload(Buffer<T>& dst, const std::vector<T>& src) {
+  dst.resize(src.size());
+  if (src.empty()) return;
+#if defined(SURGE_BACKEND_CUDA)
+  check_cuda(cudaMemcpy(dst.data(), src.data(), src.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
+#else
+  std::copy(src.begin(), src.end(), dst.data());
+#endif
+}
+template <class T>
+void download(std::vector<T>& dst, const Buffer<T>& src, std::size_t n) {
+  dst.resize(n);
+  if (n == 0) return;
+#if defined(SURGE_BACKEND_CUDA)
+  check_cuda(cudaMemcpy(dst.data(), src.data(), n * sizeof(T), cudaMemcpyDeviceToHost), "download");
+#else
+  std::copy(src.data(), src.data() + n, dst.data());
+#endif
+}
+template <class T>
+std::vector<T> download(const Buffer<T>& src) {
+  std::vector<T> v;
+  download(v, src, src.size());
+  return v;
+}
+template <class T>
+void fill(Buffer<T>& b, T value) {
+  T* p = b.data();
+  parallel_for(static_cast<int>(b.size()), SURGE_LAMBDA(int i) { p[i] = value; });
+}
+
+} // namespace surge::par

@@ -1,0 +1,88 @@
+#include "surge/particles/particle_store.hpp"
+
+namespace surge::particles {
+
+void ParticleStore::upload(const HostParticles& h) {
+  n_ = static_cast<int>(h.size());
+  const auto n = h.size();
+  par::upload(pos_, h.pos);
+  par::upload(vel_, h.vel);
+  par::upload(vel_prev_, h.vel);
+  par::upload(pos_prev_, h.pos);
+  par::upload(rho_, h.rho);
+  par::upload(rho_prev_, h.rho);
+  par::upload(press_, h.press);
+  par::upload(kind_, h.kind);
+  par::upload(id_, h.id);
+  acc_.resize(n);
+  drho_.resize(n);
+  vsig_.resize(n);
+  dead_.resize(n);
+  par::fill(acc_, Vec3{});
+  par::fill(drho_, Real(0));
+  par::fill(vsig_, Real(0));
+}
+
+void ParticleStore::download(HostParticles& h) const {
+  const auto n = static_cast<std::size_t>(n_);
+  par::download(h.pos, pos_, n);
+  par::download(h.vel, vel_, n);
+  par::download(h.rho, rho_, n);
+  par::download(h.press, press_, n);
+  par::download(h.kind, kind_, n);
+  par::download(h.id, id_, n);
+}
+
+ParticleView ParticleStore::view() {
+  return {n_, pos_.data(), vel_.data(), vel_prev_.data(), pos_prev_.data(), acc_.data(),
+          rho_.data(), rho_prev_.data(), drho_.data(), press_.data(), vsig_.data(),
+          kind_.data(), id_.data()};
+}
+
+template <class T>
+void ParticleStore::reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm) {
+  tmp.resize(static_cast<std::size_t>(n_));
+  T* out = tmp.data();
+  const T* in = field.data();
+  par::parallel_for(n_, SURGE_LAMBDA(int i) { out[i] = in[perm[i]]; });
+  field.swap(tmp);
+}
+
+int ParticleStore::sort(neighbour::UniformGrid& grid) {
+  dead_.resize(static_cast<std::size_t>(n_));
+  std::uint8_t* dead = dead_.data();
+  const std::uint8_t* kind = kind_.data();
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed);
+  par::parallel_for(n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 1 : 0; });
+  grid.sort(pos_.data(), dead, n_);
+  const std::uint32_t* perm = grid.permutation();
+  reorder(pos_, tmp3_, perm);
+  reorder(vel_, tmp3_, perm);
+  reorder(vel_prev_, tmp3_, perm);
+  reorder(pos_prev_, tmp3_, perm);
+  reorder(acc_, tmp3_, perm);
+  reorder(rho_, tmp1_, perm);
+  reorder(rho_prev_, tmp1_, perm);
+  reorder(drho_, tmp1_, perm);
+  reorder(press_, tmp1_, perm);
+  reorder(vsig_, tmp1_, perm);
+  reorder(kind_, tmpb_, perm);
+  reorder(id_, tmpu_, perm);
+  const int live = grid.build_cell_start(n_);
+  const int dropped = n_ - live;
+  n_ = live;
+  for (auto* b : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b->truncate(static_cast<std::size_t>(live));
+  for (auto* b : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b->truncate(static_cast<std::size_t>(live));
+  kind_.truncate(static_cast<std::size_t>(live));
+  id_.truncate(static_cast<std::size_t>(live));
+  return dropped;
+}
+
+std::size_t ParticleStore::bytes() const {
+  std::size_t b = 0;
+  for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_, &tmp3_}) b += x->bytes();
+  for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_, &tmp1_}) b += x->bytes();
+  return b + kind_.bytes() + dead_.bytes() + tmpb_.bytes() + id_.bytes() + tmpu_.bytes();
+}
+
+} // namespace surge::particles

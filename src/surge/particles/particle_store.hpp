@@ -1,0 +1,70 @@
+// Structure-of-arrays store of SPH particles (fluid, wall, body) in the
+// execution space, and the plain view kernels receive.
+#pragma once
+#include "surge/neighbour/uniform_grid.hpp"
+#include "surge/par/parallel.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace surge::particles {
+
+// Host-side copy of particle data, used to create particles and to write output.
+struct HostParticles {
+  std::vector<Vec3> pos, vel;
+  std::vector<Real> rho, press;
+  std::vector<std::uint8_t> kind;
+  std::vector<std::uint32_t> id;
+  [[nodiscard]] std::size_t size() const { return pos.size(); }
+  void push(const Vec3& p, const Vec3& v, Real density, Kind k, std::uint32_t ident) {
+    pos.push_back(p); vel.push_back(v); rho.push_back(density); press.push_back(0);
+    kind.push_back(static_cast<std::uint8_t>(k)); id.push_back(ident);
+  }
+};
+
+// What kernels see: raw pointers and a count. Each loop index writes only to itself.
+struct ParticleView {
+  int n = 0;
+  Vec3* pos = nullptr;
+  Vec3* vel = nullptr;
+  Vec3* vel_prev = nullptr; // v^{n-1} (Verlet) or v^n (symplectic predictor)
+  Vec3* pos_prev = nullptr; // r^n for the symplectic scheme
+  Vec3* acc = nullptr;
+  Real* rho = nullptr;
+  Real* rho_prev = nullptr;
+  Real* drho = nullptr;
+  Real* press = nullptr;
+  Real* vsig = nullptr;     // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
+  std::uint8_t* kind = nullptr;
+  std::uint32_t* id = nullptr;
+};
+
+class ParticleStore {
+public:
+  // Replaces the contents with host data (velocities become both v^n and v^{n-1}).
+  void upload(const HostParticles& h);
+  // Copies the current state to the host (pressure included).
+  void download(HostParticles& h) const;
+
+  [[nodiscard]] int size() const { return n_; }
+  [[nodiscard]] ParticleView view();
+  // Sorts by cell, reorders every field and drops particles marked Removed.
+  // Returns the number of particles dropped.
+  int sort(neighbour::UniformGrid& grid);
+  // Bytes held in the execution space, grid excluded.
+  [[nodiscard]] std::size_t bytes() const;
+
+private:
+  template <class T> void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
+  int n_ = 0;
+  par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
+  par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
+  par::Buffer<std::uint8_t> kind_, dead_;
+  par::Buffer<std::uint32_t> id_;
+  par::Buffer<Vec3> tmp3_;
+  par::Buffer<Real> tmp1_;
+  par::Buffer<std::uint32_t> tmpu_;
+  par::Buffer<std::uint8_t> tmpb_;
+};
+
+} // namespace surge::particles

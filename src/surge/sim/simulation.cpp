@@ -1,0 +1,247 @@
+#include "surge/sim/simulation.hpp"
+
+#include "surge/core/error.hpp"
+#include "surge/core/version.hpp"
+#include "surge/geometry/particle_generators.hpp"
+#include "surge/io/atomic_file.hpp"
+#include "surge/io/case_reader.hpp"
+#include "surge/io/vtk_writer.hpp"
+#include "surge/sph/gauges.hpp"
+#include "surge/sph/wcsph_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <sys/resource.h>
+
+namespace surge::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Throughput assumed by `surge check` for its run-time estimate (2 threads, this
+// project's CPU benchmark, rounded down).
+constexpr double assumed_particle_steps_per_s = 1.0e6;
+// Bytes held per particle by the solver (fields + sort scratch + keys), see ParticleStore.
+constexpr double bytes_per_particle_estimate = 120.0;
+
+std::string hms(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--:--";
+  const long t = std::lround(s);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  return buf;
+}
+
+double peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) * 1024.0;
+}
+
+struct Totals {
+  long removed_domain = 0, removed_density = 0, non_finite = 0;
+  [[nodiscard]] long removed() const { return removed_domain + removed_density + non_finite; }
+};
+
+std::string summary_json(const Case& c, const sph::InitialState& init, const std::string& status, int code, long steps,
+                         double t, double wall, const Totals& tot, int n_now, double rss, const std::string& message) {
+  std::ostringstream j;
+  j.precision(10);
+  const double n_all = static_cast<double>(init.n_fluid + init.n_wall);
+  std::string msg;
+  for (char ch : message) {
+    if (ch == '"' || ch == '\\') msg += '\\';
+    if (ch == '\n') { msg += "\\n"; continue; }
+    msg += ch;
+  }
+  j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
+    << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
+    << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
+    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": 0, \"sphere\": 0, \"now\": " << n_now << "},\n"
+    << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
+    << "  \"particle_steps_per_second\": " << (wall > 0 ? n_all * static_cast<double>(steps) / wall : 0.0) << ",\n"
+    << "  \"fluid_particle_steps_per_second\": " << (wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(steps) / wall : 0.0) << ",\n"
+    << "  \"removed\": {\"total\": " << tot.removed() << ", \"left_domain\": " << tot.removed_domain
+    << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite << "},\n"
+    << "  \"peak_rss_bytes\": " << rss << ",\n  \"bytes_per_particle\": " << (n_all > 0 ? rss / n_all : 0.0) << "\n}\n";
+  return j.str();
+}
+
+std::string csv_text(const std::vector<std::string>& names, const std::vector<std::vector<double>>& rows) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "time";
+  for (const auto& n : names) s << "," << n;
+  s << "\n";
+  for (const auto& r : rows) {
+    for (std::size_t k = 0; k < r.size(); ++k) s << (k ? "," : "") << r[k];
+    s << "\n";
+  }
+  return s.str();
+}
+
+double first_dt(const Case& c) {
+  const double h = c.h();
+  const double c0 = sph::sound_speed(c.sph.eta, c.g(), c.water_depth());
+  return c.sph.cfl * std::min(std::sqrt(h / c.g()), h / c0);
+}
+
+} // namespace
+
+int check(const Case& c) {
+  const auto init = sph::build_initial_state(c);
+  const double n = static_cast<double>(init.n_fluid + init.n_wall);
+  const double dt0 = first_dt(c);
+  const double steps = c.time.end / dt0;
+  std::printf("case        %s (%s)\n", c.name.c_str(), c.source.c_str());
+  std::printf("particles   %zu fluid, %zu wall (%d wall layers), %zu fluid particles dropped inside walls\n",
+              init.n_fluid, init.n_wall, geometry::wall_layers(c), init.fluid_dropped_by_walls);
+  std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
+              bytes_per_particle_estimate);
+  std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
+              sph::sound_speed(c.sph.eta, c.g(), c.water_depth()));
+  std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
+  std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow accelerates)\n",
+              hms(steps * n / assumed_particle_steps_per_s).c_str(), assumed_particle_steps_per_s);
+  int warnings = 0;
+  auto warn = [&](const std::string& w) { std::printf("warning     %s\n", w.c_str()); ++warnings; };
+  if (c.sph.h_over_dp < 1.2)
+    warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
+  if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
+  if (!c.fluid.empty() && c.dp > c.water_depth() / 25)
+    warn("dp is coarser than 1/25 of the water depth (" + std::to_string(c.water_depth()) + " m): the paper's guidance is dp <= depth/25");
+  if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
+  if (warnings == 0) std::printf("warnings    none\n");
+  return 0;
+}
+
+int run(const Case& c, const RunOptions& opt) {
+  const auto wall0 = Clock::now();
+  // Everything that can fail on input happens before the output folder is touched.
+  const sph::InitialState init = sph::build_initial_state(c);
+  sph::WcsphSolver solver(c, init);
+  sph::Gauges gauges(c, init);
+
+  namespace fs = std::filesystem;
+  const fs::path out(opt.out_dir);
+  fs::create_directories(out / "particles");
+  io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
+  io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
+  io::PvdCollection walls_pvd((out / "walls.pvd").string());
+  walls_pvd.add(0.0, "particles/walls_0000.vtp");
+  io::PvdCollection fluid_pvd((out / "fluid.pvd").string());
+
+  particles::HostParticles host;
+  std::vector<std::vector<double>> rows;
+  Totals tot, since_output;
+  double t = 0;
+  int frame = 0;
+  std::size_t rows_written = 0;
+  auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
+    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    io::write_file_atomic((out / "summary.json").string(),
+                          summary_json(c, init, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
+  };
+  auto sample_gauges = [&] {
+    auto v = gauges.sample(solver);
+    v.insert(v.begin(), t);
+    rows.push_back(std::move(v));
+  };
+  auto write_output = [&] {
+    solver.refresh();
+    solver.download(host);
+    char name[64];
+    std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
+    io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
+    fluid_pvd.add(t, std::string("particles/") + name);
+    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
+    rows_written = rows.size();
+    write_summary("running", 0, "");
+    ++frame;
+    if (since_output.removed() > 0 && !opt.quiet)
+      std::fprintf(stderr, "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density out of range, %ld non-finite)\n",
+                   opt.progress_tty ? "\n" : "", t, since_output.removed(), since_output.removed_domain, since_output.removed_density, since_output.non_finite);
+    since_output = {};
+  };
+
+  sample_gauges();
+  write_output();
+  const double eps = 1e-9 * c.time.end;
+  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
+  const double dt_min = c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c);
+  const double max_removed = c.sph.max_removed_share * static_cast<double>(init.n_fluid);
+  auto last_report = Clock::now();
+  const auto loop0 = Clock::now();
+  std::string failure;
+  while (t < c.time.end - eps) {
+    if (opt.stop && *opt.stop) break;
+    const double dt_max = std::min({next_out, next_gauge, c.time.end}) - t;
+    const sph::StepStats s = solver.step(dt_max);
+    t += s.dt;
+    for (Totals* x : {&tot, &since_output}) {
+      x->removed_domain += s.removed_domain;
+      x->removed_density += s.removed_density;
+      x->non_finite += s.non_finite;
+    }
+    if (s.non_finite > 0) {
+      std::ostringstream m;
+      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << s.non_finite
+        << " particles have non-finite position, velocity or density";
+      failure = m.str();
+    } else if (static_cast<double>(tot.removed()) > max_removed && init.n_fluid > 0) {
+      std::ostringstream m;
+      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << tot.removed() << " of " << init.n_fluid
+        << " fluid particles removed (limit sph.max_removed_share = " << c.sph.max_removed_share << "; "
+        << tot.removed_domain << " left the domain, " << tot.removed_density << " density out of range)";
+      failure = m.str();
+    } else if (s.dt < dt_min && s.dt < dt_max * (1 - 1e-9)) {
+      std::ostringstream m;
+      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): the time step fell to " << s.dt
+        << " s, below time.dt_min = " << dt_min << " s";
+      failure = m.str();
+    }
+    if (!failure.empty()) break;
+    if (t >= next_gauge - eps) {
+      sample_gauges();
+      next_gauge += c.time.gauge_every;
+    }
+    if (t >= next_out - eps) {
+      write_output();
+      next_out += c.time.output_every;
+    }
+    const auto now = Clock::now();
+    const double since = std::chrono::duration<double>(now - last_report).count();
+    if (!opt.quiet && (opt.progress_tty ? since > 0.5 : since > opt.report_every_s)) {
+      last_report = now;
+      const double el = std::chrono::duration<double>(now - loop0).count();
+      const double sps = static_cast<double>(solver.step_count()) / el;
+      const double eta_s = el * (c.time.end - t) / std::max(t, 1e-12);
+      std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %.1f steps/s  dt %.2e s  ETA %s%s", opt.progress_tty ? "\r" : "", t,
+                   c.time.end, 100.0 * t / c.time.end, sps, s.dt, hms(eta_s).c_str(), opt.progress_tty ? "   " : "\n");
+    }
+  }
+  if (opt.progress_tty && !opt.quiet) std::fprintf(stderr, "\n");
+  if (!failure.empty()) {
+    // Outputs written so far are the last good state; nothing after it is written.
+    write_summary("diverged", 3, failure);
+    std::fprintf(stderr, "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
+                 failure.c_str(), frame > 0 ? (frame - 1) * c.time.output_every : 0.0, out.string().c_str());
+    return 3;
+  }
+  const bool interrupted = opt.stop && *opt.stop;
+  if (rows.size() > rows_written || interrupted) write_output();
+  write_summary(interrupted ? "interrupted" : "completed", interrupted ? 130 : 0, interrupted ? "stopped by the user" : "");
+  if (!opt.quiet) {
+    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    const double n = static_cast<double>(init.n_fluid + init.n_wall);
+    std::fprintf(stderr, "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid particles removed\n  output in %s\n",
+                 interrupted ? "interrupted" : "done", solver.step_count(), t, wall, n * static_cast<double>(solver.step_count()) / wall,
+                 init.n_fluid, init.n_wall, tot.removed(), out.string().c_str());
+  }
+  return interrupted ? 130 : 0;
+}
+
+} // namespace surge::sim

@@ -1,0 +1,51 @@
+// Gauges (SPEC §2.7): free-surface height on a vertical line, Shepard-interpolated
+// pressure and velocity at a point, force on a wall.
+#pragma once
+#include "surge/core/case.hpp"
+#include "surge/sph/wcsph_solver.hpp"
+
+#include <string>
+#include <vector>
+
+namespace surge::sph {
+
+// Kernel sums at a point over fluid particles: sum V W, sum V W p, sum V W v.
+struct PointSums {
+  Real vw = 0, vwp = 0;
+  Vec3 vwv{};
+};
+
+[[nodiscard]] SURGE_HD inline PointSums fluid_sums(const WcsphParams& prm, const neighbour::GridView& g,
+                                                   const particles::ParticleView& p, const Vec3& x) {
+  PointSums s;
+  const Real r2max = prm.kernel.support() * prm.kernel.support();
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  neighbour::for_each_neighbour(g, x, r2max, [&](int j, const Vec3&, Real r2) {
+    if (p.kind[j] != fluid) return;
+    const Real vw = prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
+    s.vw += vw;
+    s.vwp += vw * p.press[j];
+    s.vwv += p.vel[j] * vw;
+  });
+  return s;
+}
+
+class Gauges {
+public:
+  Gauges(const Case& c, const InitialState& init);
+  [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
+  // One value per gauge for the solver's current state.
+  std::vector<double> sample(WcsphSolver& solver);
+
+private:
+  struct Probe { GaugeSpec spec; int first_sample = 0, n_samples = 0; std::uint32_t id0 = 0, id1 = 0; };
+  std::vector<Probe> probes_;
+  std::vector<std::string> names_;
+  std::vector<Vec3> points_host_;
+  par::Buffer<Vec3> points_;
+  par::Buffer<PointSums> sums_;
+  double dz_ = 0;
+  double origin_z_ = 0;
+};
+
+} // namespace surge::sph

@@ -1,0 +1,71 @@
+// The per-particle sums of weakly-compressible SPH (SPEC §2.3, §2.4):
+//   drho_i/dt = sum_j m_j v_ij . grad_i W_ij + D_i                 (continuity)
+//   D_i = delta h c0 sum_j m_j 4/(rho_i+rho_j) (rho_j-rho_i) (r_ji.grad_i W_ij)/(r^2+0.01h^2)
+//         (Molteni & Colagrossi 2009 delta-SPH; fluid-fluid pairs only)
+//   dv_i/dt = -sum_j m_j ((p_i+p_j)/(rho_i rho_j) + Pi_ij) grad_i W_ij + g
+//   Pi_ij = -alpha c0 mu_ij / rho_mean,  mu_ij = h v_ij.r_ij/(r^2+0.01h^2) when v_ij.r_ij < 0
+//         (Monaghan 1992; the standard form with rho_mean = (rho_i+rho_j)/2, not the
+//          paper's Eq. 21 which divides by rho_i+rho_j)
+// Wall and body particles sum over fluid neighbours only (dynamic boundary particles).
+// Each particle i writes only its own rates, so results do not depend on thread order.
+#pragma once
+#include "surge/neighbour/uniform_grid.hpp"
+#include "surge/particles/particle_store.hpp"
+#include "surge/sph/eos_tait.hpp"
+#include "surge/sph/kernel_wendland_c2.hpp"
+
+namespace surge::sph {
+
+struct WcsphParams {
+  WendlandC2 kernel;
+  TaitEos eos;
+  Real mass = 1;      // rho0 dp^3, the same for every SPH particle
+  Real alpha = Real(0.01); // artificial viscosity
+  Real delta = Real(0.1);  // density diffusion
+  Vec3 gravity{};
+};
+
+struct Rates {
+  Vec3 acc{};   // without gravity for boundary particles (force per mass from the fluid)
+  Real drho = 0;
+  Real vsig = 0;
+};
+
+[[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
+                                                const particles::ParticleView& p, int i) {
+  const Real h = prm.kernel.h;
+  const Real eta2 = Real(0.01) * h * h;
+  const Real r2max = prm.kernel.support() * prm.kernel.support();
+  const Vec3 xi = p.pos[i];
+  const Vec3 vi = p.vel[i];
+  const Real rhoi = p.rho[i];
+  const Real pi = p.press[i];
+  const bool fluid_i = p.kind[i] == static_cast<std::uint8_t>(Kind::Fluid);
+  const Real c0 = prm.eos.c0;
+  Real drho = 0, diff = 0, vsig = 0;
+  Vec3 acc{};
+  neighbour::for_each_neighbour(g, xi, r2max, [&](int j, const Vec3& rij, Real r2) {
+    if (j == i) return;
+    const bool fluid_j = p.kind[j] == static_cast<std::uint8_t>(Kind::Fluid);
+    if (!fluid_i && !fluid_j) return; // boundary particles see fluid only
+    const Real r = std::sqrt(r2);
+    const Vec3 grad = rij * prm.kernel.dw_over_r(r);
+    const Vec3 vij = vi - p.vel[j];
+    const Real rhoj = p.rho[j];
+    const Real vr = dot(vij, rij);
+    drho += prm.mass * dot(vij, grad);
+    const Real mu = h * vr / (r2 + eta2);
+    vsig = std::fmax(vsig, std::fabs(mu));
+    if (fluid_i && fluid_j) diff += prm.mass * 4 / (rhoi + rhoj) * (rhoj - rhoi) * (-dot(rij, grad)) / (r2 + eta2);
+    Real coef = (pi + p.press[j]) / (rhoi * rhoj);
+    if (vr < 0) coef += -prm.alpha * c0 * mu / ((rhoi + rhoj) / 2);
+    acc -= grad * (prm.mass * coef);
+  });
+  Rates out;
+  out.drho = drho + prm.delta * h * c0 * diff;
+  out.acc = fluid_i ? acc + prm.gravity : acc;
+  out.vsig = vsig;
+  return out;
+}
+
+} // namespace surge::sph

@@ -1,0 +1,209 @@
+#include "surge/sph/wcsph_solver.hpp"
+
+#include "surge/core/error.hpp"
+#include "surge/geometry/particle_generators.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace surge::sph {
+
+InitialState build_initial_state(const Case& c) {
+  InitialState s;
+  s.origin = c.domain.min;
+  const int layers = geometry::wall_layers(c);
+  std::vector<std::unique_ptr<geometry::Mesh>> meshes;
+  for (const auto& w : c.walls) meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
+
+  const double g = c.g(), rho0 = c.sph.rho0;
+  const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(sound_speed(c.sph.eta, g, c.water_depth())));
+  std::uint32_t next_id = 0;
+  auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
+  for (const auto& f : c.fluid) {
+    for (const auto& p : geometry::fill_box(f.box, c.dp)) {
+      bool blocked = false;
+      for (std::size_t w = 0; w < c.walls.size() && !blocked; ++w) blocked = geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp);
+      if (blocked) { ++s.fluid_dropped_by_walls; continue; }
+      // Hydrostatic start: pressure from the depth below this region's top.
+      Real rho = static_cast<Real>(rho0);
+      if (c.sph.hydrostatic_init) rho = eos.density(static_cast<Real>(rho0 * g * (f.box.max.z - p.z)));
+      s.particles.push(local(p), Vec3(f.velocity), rho, Kind::Fluid, next_id++);
+      ++s.n_fluid;
+    }
+  }
+  for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    const auto& ws = c.walls[w];
+    const auto pts = ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers) : geometry::box_wall(ws, c.dp, layers);
+    const std::uint32_t first = next_id;
+    for (const auto& p : pts) s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
+    s.wall_ids.emplace_back(first, next_id);
+    s.n_wall += pts.size();
+  }
+  if (c.fluid.size() > 0 && s.n_fluid == 0)
+    throw InputError(c.source, c.fluid.front().line, "fluid", "every fluid particle lies inside a wall; check the walls and the fluid boxes");
+  if (s.particles.size() > 2'000'000'000ULL)
+    throw InputError(c.source, 0, "dp", "more than 2e9 particles; increase dp");
+  return s;
+}
+
+WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
+  const double h = c.h();
+  prm_.kernel = WendlandC2(static_cast<Real>(h));
+  prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(sound_speed(c.sph.eta, c.g(), c.water_depth())));
+  prm_.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
+  prm_.alpha = static_cast<Real>(c.sph.alpha);
+  prm_.delta = static_cast<Real>(c.sph.delta);
+  prm_.gravity = Vec3(c.gravity);
+  symplectic_ = c.sph.integrator == "symplectic";
+  dom_lo_ = Vec3{};
+  dom_hi_ = Vec3(c.domain.max - c.domain.min);
+  // The grid covers the domain and every wall particle.
+  Vec3 lo = dom_lo_, hi = dom_hi_;
+  for (const auto& p : init.particles.pos)
+    for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], p[k]); hi[k] = std::fmax(hi[k], p[k]); }
+  grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support()));
+  store_.upload(init.particles);
+}
+
+void WcsphSolver::sort_and_rates() {
+  const auto t0 = std::chrono::steady_clock::now();
+  store_.sort(grid_);
+  time_sort += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  auto p = store_.view();
+  const auto g = grid_.view(p.pos);
+  const WcsphParams prm = prm_;
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+    const Rates r = wcsph_rates(prm, g, p, i);
+    p.acc[i] = r.acc;
+    p.drho[i] = r.drho;
+    p.vsig[i] = r.vsig;
+  });
+  fresh_ = true;
+}
+
+void WcsphSolver::refresh() {
+  if (!fresh_) sort_and_rates();
+}
+
+double WcsphSolver::dt_from_rates() {
+  auto p = store_.view();
+  const Real h = prm_.kernel.h, c0 = prm_.eos.c0;
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  // min over fluid of min(sqrt(h/|a|), h/(c0 + vsig))
+  const Real inf = std::numeric_limits<Real>::max();
+  const Real dt = par::parallel_reduce(p.n, inf, SURGE_LAMBDA(int i) {
+    if (p.kind[i] != fluid) return inf;
+    const Real a = norm(p.acc[i]);
+    const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
+    const Real dtcv = h / (c0 + p.vsig[i]);
+    return dtf < dtcv ? dtf : dtcv; }, par::Min{});
+  return case_.sph.cfl * static_cast<double>(dt == inf ? h / c0 : dt);
+}
+
+double WcsphSolver::stable_dt() {
+  refresh();
+  return dt_from_rates();
+}
+
+int WcsphSolver::flag_removals(StepStats& s) {
+  auto p = store_.view();
+  const Vec3 lo = dom_lo_, hi = dom_hi_;
+  const Real rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0), rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
+  // Counts packed into one integer: non-finite << 42 | density << 21 | domain.
+  const long long packed = par::parallel_reduce(p.n, 0LL, SURGE_LAMBDA(int i) -> long long {
+    if (p.kind[i] != fluid) return 0;
+    const Vec3 x = p.pos[i];
+    const Real rho = p.rho[i];
+    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
+                        std::isfinite(p.vel[i].x) && std::isfinite(p.vel[i].y) && std::isfinite(p.vel[i].z);
+    long long code = 0;
+    if (!finite) code = 1LL << 42;
+    else if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) code = 1;
+    else if (rho < rmin || rho > rmax) code = 1LL << 21;
+    if (code) p.kind[i] = removed;
+    return code; }, par::Sum{});
+  s.removed_domain = static_cast<int>(packed & ((1LL << 21) - 1));
+  s.removed_density = static_cast<int>((packed >> 21) & ((1LL << 21) - 1));
+  s.non_finite = static_cast<int>(packed >> 42);
+  return s.removed_domain + s.removed_density + s.non_finite;
+}
+
+StepStats WcsphSolver::step(double dt_max) {
+  const auto t0 = std::chrono::steady_clock::now();
+  refresh();
+  StepStats s;
+  const double dt_d = std::fmin(dt_from_rates(), dt_max);
+  s.dt = dt_d;
+  const Real dt = static_cast<Real>(dt_d);
+  const Real rho0 = prm_.eos.rho0;
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  auto p = store_.view();
+  if (!symplectic_) {
+    // Verlet (Monaghan 1989) with an Euler step every euler_every steps.
+    const bool euler = steps_ % case_.sph.euler_every == 0;
+    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+      const Real rho_old = p.rho_prev[i];
+      const Real rho_now = p.rho[i];
+      Real rho_new = euler ? rho_now + dt * p.drho[i] : rho_old + 2 * dt * p.drho[i];
+      if (p.kind[i] == fluid) {
+        const Vec3 v_now = p.vel[i];
+        const Vec3 a = p.acc[i];
+        p.pos[i] += v_now * dt + a * (dt * dt / 2);
+        p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
+        p.vel_prev[i] = v_now;
+      } else if (rho_new < rho0) {
+        rho_new = rho0; // boundary particles must not pull the fluid
+      }
+      p.rho_prev[i] = rho_now;
+      p.rho[i] = rho_new;
+    });
+  } else {
+    // Symplectic position-Verlet predictor-corrector (second order).
+    const Real half = dt / 2;
+    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+      p.rho_prev[i] = p.rho[i];
+      Real rho = p.rho[i] + half * p.drho[i];
+      if (p.kind[i] == fluid) {
+        p.pos_prev[i] = p.pos[i];
+        p.vel_prev[i] = p.vel[i];
+        p.pos[i] += p.vel[i] * half;
+        p.vel[i] += p.acc[i] * half;
+      } else if (rho < rho0) {
+        rho = rho0;
+      }
+      p.rho[i] = rho;
+    });
+    const auto g = grid_.view(p.pos);
+    const WcsphParams prm = prm_;
+    par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
+    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+      const Rates r = wcsph_rates(prm, g, p, i);
+      p.acc[i] = r.acc;
+      p.drho[i] = r.drho;
+      p.vsig[i] = r.vsig;
+    });
+    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+      Real rho = p.rho_prev[i] + dt * p.drho[i];
+      if (p.kind[i] == fluid) {
+        const Vec3 v0 = p.vel_prev[i];
+        const Vec3 v1 = v0 + p.acc[i] * dt;
+        p.vel[i] = v1;
+        p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
+      } else if (rho < rho0) {
+        rho = rho0;
+      }
+      p.rho[i] = rho;
+    });
+  }
+  ++steps_;
+  fresh_ = false;
+  flag_removals(s);
+  time_total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+} // namespace surge::sph

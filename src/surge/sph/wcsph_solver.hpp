@@ -1,0 +1,71 @@
+// Weakly-compressible SPH solver (SPEC §2): owns the particles and advances them.
+#pragma once
+#include "surge/core/case.hpp"
+#include "surge/neighbour/uniform_grid.hpp"
+#include "surge/particles/particle_store.hpp"
+#include "surge/sph/wcsph_rates.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace surge::sph {
+
+// The particles a case starts with, in local coordinates (absolute - origin).
+struct InitialState {
+  particles::HostParticles particles;
+  Vec3d origin{};                       // case domain.min; local = absolute - origin
+  std::size_t n_fluid = 0, n_wall = 0;
+  // Wall particle ids of each case wall: [first, last) (ids are assigned in order).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> wall_ids;
+  std::size_t fluid_dropped_by_walls = 0;
+};
+
+// Builds fluid and wall particles from the case (meshes are read here).
+InitialState build_initial_state(const Case& c);
+
+struct StepStats {
+  double dt = 0;
+  int removed_domain = 0;   // left the domain this step
+  int removed_density = 0;  // density left [rho_min, rho_max] rho0
+  int non_finite = 0;       // NaN / inf in position, velocity or density
+};
+
+class WcsphSolver {
+public:
+  WcsphSolver(const Case& c, const InitialState& init);
+
+  // Sorts, computes rates, chooses dt (clipped to dt_max), integrates, flags removals.
+  StepStats step(double dt_max);
+  // The time step the current state allows (SPEC §2.5); computes rates if needed.
+  double stable_dt();
+
+  [[nodiscard]] const WcsphParams& params() const { return prm_; }
+  [[nodiscard]] int size() const { return store_.size(); }
+  [[nodiscard]] long step_count() const { return steps_; }
+  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes(); }
+  [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
+  particles::ParticleView view() { return store_.view(); }
+  void download(particles::HostParticles& h) const { store_.download(h); }
+  // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
+  void refresh();
+
+  // Timing of the last steps, seconds: neighbour search + sort, everything.
+  double time_sort = 0, time_total = 0;
+
+private:
+  void sort_and_rates();
+  double dt_from_rates();
+  int flag_removals(StepStats& s);
+
+  Case case_;
+  WcsphParams prm_;
+  particles::ParticleStore store_;
+  neighbour::UniformGrid grid_;
+  Vec3 dom_lo_{}, dom_hi_{};
+  bool symplectic_ = false;
+  bool fresh_ = false; // rates match positions
+  long steps_ = 0;
+};
+
+} // namespace surge::sph
