@@ -4,6 +4,7 @@
 #include "surge/core/types.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct TimeConfig {
   double output_every = 0.02;
   double gauge_every = 0.0;   // 0: every output_every / 10
   double dt_min = 0.0;        // 0: 1e-3 of the first time step; below this the run is stopped
+  long max_steps = 0;         // > 0: stop after this many steps (benchmarks)
 };
 
 struct SphConfig {
@@ -32,6 +34,7 @@ struct SphConfig {
   double cfl = 0.2;
   double rho0 = 1000.0;
   double hmax = 0.0;          // 0: from the fluid regions (highest water top - lowest water bottom)
+  double c0 = 0.0;            // 0: c0 = eta sqrt(g hmax); > 0 sets the speed of sound directly
   std::string integrator = "verlet";  // verlet | symplectic
   int euler_every = 40;
   double rho_min = 0.7;       // removal bounds, as fractions of rho0
@@ -91,6 +94,7 @@ struct Case {
     return fluid.empty() ? 0.0 : hi - lo;
   }
   [[nodiscard]] double g() const { return norm(gravity); }
+  [[nodiscard]] double sound_speed() const { return sph.c0 > 0 ? sph.c0 : sph.eta * std::sqrt(g() * water_depth()); }
 };
 
 inline const char* face_name(Face f) {

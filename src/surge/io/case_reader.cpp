@@ -185,11 +185,13 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
 
   if (const auto t = root["time"]; t.IsDefined()) {
-    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min"});
+    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min", "max_steps"});
     c.time.end = r.get(t, "time", "end", c.time.end);
     c.time.output_every = r.get(t, "time", "output_every", c.time.output_every);
     c.time.gauge_every = r.get(t, "time", "gauge_every", c.time.gauge_every);
     c.time.dt_min = r.get(t, "time", "dt_min", c.time.dt_min);
+    c.time.max_steps = r.get(t, "time", "max_steps", c.time.max_steps);
+    if (c.time.max_steps < 0) r.fail(t["max_steps"], "time.max_steps", "must not be negative");
     if (!(c.time.end > 0)) r.fail(t["end"], "time.end", "must be positive");
     if (!(c.time.output_every > 0)) r.fail(t["output_every"], "time.output_every", "must be positive");
     if (c.time.gauge_every < 0) r.fail(t["gauge_every"], "time.gauge_every", "must not be negative");
@@ -197,12 +199,12 @@ Case parse(const YAML::Node& root, Reader& r) {
   }
   if (c.time.gauge_every == 0) c.time.gauge_every = c.time.output_every / 10;
   c.gravity = r.get(root, "", "gravity", c.gravity);
-  if (!(norm(c.gravity) > 0)) r.fail(root["gravity"], "gravity", "must not be zero (c0 is derived from g)");
 
-  c.domain = parse_box(r, root["domain"].IsDefined() ? root["domain"] : (r.fail(root, "domain", "is required"), root), "domain");
+  if (!root["domain"].IsDefined()) r.fail(root, "domain", "is required");
+  c.domain = parse_box(r, root["domain"], "domain");
 
   if (const auto s = root["sph"]; s.IsDefined()) {
-    r.check_keys(s, "sph", {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "integrator", "euler_every",
+    r.check_keys(s, "sph", {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "euler_every",
                             "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
     auto& p = c.sph;
     p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
@@ -212,6 +214,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     p.cfl = r.get(s, "sph", "cfl", p.cfl);
     p.rho0 = r.get(s, "sph", "rho0", p.rho0);
     p.hmax = r.get(s, "sph", "hmax", p.hmax);
+    p.c0 = r.get(s, "sph", "c0", p.c0);
     p.integrator = r.get(s, "sph", "integrator", p.integrator);
     p.euler_every = r.get(s, "sph", "euler_every", p.euler_every);
     p.rho_min = r.get(s, "sph", "rho_min", p.rho_min);
@@ -227,6 +230,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     positive(p.rho0, "rho0");
     if (p.alpha < 0) r.fail(s["alpha"], "sph.alpha", "must not be negative");
     if (p.delta < 0) r.fail(s["delta"], "sph.delta", "must not be negative");
+    if (p.c0 < 0) r.fail(s["c0"], "sph.c0", "must not be negative");
     if (p.hmax < 0) r.fail(s["hmax"], "sph.hmax", "must not be negative");
     if (p.integrator != "verlet" && p.integrator != "symplectic")
       r.fail(s["integrator"], "sph.integrator", "must be verlet or symplectic");
@@ -341,6 +345,8 @@ Case parse(const YAML::Node& root, Reader& r) {
   }
   if (c.fluid.empty() && c.walls.empty()) r.fail(root, "fluid", "the case has neither fluid nor walls: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0)) r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
+  if (!c.fluid.empty() && !(c.sound_speed() > 0))
+    r.fail(root["gravity"], "gravity", "with zero gravity the speed of sound must be given as sph.c0");
   return c;
 }
 
@@ -391,7 +397,8 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "dp" << YAML::Value << c.dp;
   e << YAML::Key << "time" << YAML::Value << YAML::BeginMap << YAML::Key << "end" << YAML::Value << c.time.end
     << YAML::Key << "output_every" << YAML::Value << c.time.output_every << YAML::Key << "gauge_every" << YAML::Value
-    << c.time.gauge_every << YAML::Key << "dt_min" << YAML::Value << c.time.dt_min << YAML::EndMap;
+    << c.time.gauge_every << YAML::Key << "dt_min" << YAML::Value << c.time.dt_min << YAML::Key << "max_steps"
+    << YAML::Value << c.time.max_steps << YAML::EndMap;
   e << YAML::Key << "gravity" << YAML::Value;
   vec(c.gravity);
   e << YAML::Key << "domain" << YAML::Value;
@@ -401,7 +408,7 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "h_over_dp" << YAML::Value << s.h_over_dp << YAML::Key << "alpha" << YAML::Value << s.alpha;
   e << YAML::Key << "delta" << YAML::Value << s.delta << YAML::Key << "eta" << YAML::Value << s.eta;
   e << YAML::Key << "cfl" << YAML::Value << s.cfl << YAML::Key << "rho0" << YAML::Value << s.rho0;
-  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "integrator" << YAML::Value << s.integrator;
+  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "c0" << YAML::Value << s.c0 << YAML::Key << "integrator" << YAML::Value << s.integrator;
   e << YAML::Key << "euler_every" << YAML::Value << s.euler_every << YAML::Key << "rho_min" << YAML::Value << s.rho_min;
   e << YAML::Key << "rho_max" << YAML::Value << s.rho_max << YAML::Key << "max_removed_share" << YAML::Value
     << s.max_removed_share << YAML::Key << "hydrostatic_init" << YAML::Value << s.hydrostatic_init;

@@ -19,24 +19,27 @@ GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius) {
   s.nx = count(lo.x, hi.x);
   s.ny = count(lo.y, hi.y);
   s.nz = count(lo.z, hi.z);
-  if (static_cast<double>(s.nx) * s.ny * s.nz > 4.0e9)
-    throw std::invalid_argument("neighbour grid too large: domain / (2h) exceeds 4e9 cells");
+  if (static_cast<double>(s.nx) * s.ny * s.nz > 2.0e9)
+    throw std::invalid_argument("neighbour grid too large: domain / (2h) exceeds 2e9 cells");
   return s;
 }
 
-void UniformGrid::sort(const Vec3* pos, const std::uint8_t* dead, int n) {
+void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
   keys_.resize(static_cast<std::size_t>(n));
   perm_.resize(static_cast<std::size_t>(n));
   std::uint32_t* keys = keys_.data();
   const GridSpec s = spec_;
-  const std::uint32_t sentinel = s.cells();
-  par::parallel_for(n, SURGE_LAMBDA(int i) { keys[i] = (dead && dead[i]) ? sentinel : s.key(pos[i]); });
+  const std::uint32_t sentinel = 2 * s.cells();
+  par::parallel_for(n, SURGE_LAMBDA(int i) {
+    const std::uint32_t c = cls ? cls[i] : 0U;
+    keys[i] = c >= 2 ? sentinel : 2 * s.key(pos[i]) + c;
+  });
   algo::iota(perm_.data(), n);
   algo::sort_by_key(keys, perm_.data(), n);
 }
 
 int UniformGrid::build_cell_start(int n) {
-  const std::uint32_t ncell = spec_.cells();
+  const std::uint32_t ncell = 2 * spec_.cells(); // (cell, class) slots
   cell_start_.resize(static_cast<std::size_t>(ncell) + 1);
   std::uint32_t* start = cell_start_.data();
   const std::uint32_t* keys = keys_.data();

@@ -27,7 +27,10 @@ struct GridSpec {
 GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius);
 
 // What a kernel needs to walk neighbours: the grid, the sorted positions and
-// cell_start (cells()+1 entries; cell c holds particles [start[c], start[c+1])).
+// cell_start. Particles are sorted by (cell, class): within each cell the class-0
+// particles (fluid) come first, then class-1 (boundary). cell_start has
+// 2 cells() + 1 entries: cell c holds [start[2c], start[2c+2]), its fluid part
+// [start[2c], start[2c+1]).
 struct GridView {
   GridSpec spec;
   const std::uint32_t* cell_start = nullptr;
@@ -46,11 +49,35 @@ SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r
     for (int y = cy - 1; y <= cy + 1; ++y) {
       if (y < 0 || y >= s.ny) continue;
       const int row = s.nx * (y + s.ny * z);
-      const std::uint32_t end = g.cell_start[row + x1 + 1];
-      for (std::uint32_t j = g.cell_start[row + x0]; j < end; ++j) {
+      const std::uint32_t end = g.cell_start[2 * (row + x1 + 1)];
+      for (std::uint32_t j = g.cell_start[2 * (row + x0)]; j < end; ++j) {
         const Vec3 d = x - g.pos[j];
         const Real r2 = dot(d, d);
         if (r2 < r2max) f(static_cast<int>(j), d, r2);
+      }
+    }
+  }
+}
+
+// Like for_each_neighbour, over class-0 (fluid) particles only: what boundary
+// particles need, without scanning the other boundary particles around them.
+template <class F>
+SURGE_HD inline void for_each_fluid_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
+  const GridSpec& s = g.spec;
+  const int cx = s.coord(x.x, s.lo.x, s.nx), cy = s.coord(x.y, s.lo.y, s.ny), cz = s.coord(x.z, s.lo.z, s.nz);
+  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < s.nx ? cx + 1 : s.nx - 1;
+  for (int z = cz - 1; z <= cz + 1; ++z) {
+    if (z < 0 || z >= s.nz) continue;
+    for (int y = cy - 1; y <= cy + 1; ++y) {
+      if (y < 0 || y >= s.ny) continue;
+      const int row = s.nx * (y + s.ny * z);
+      for (int c = row + x0; c <= row + x1; ++c) {
+        const std::uint32_t end = g.cell_start[2 * c + 1];
+        for (std::uint32_t j = g.cell_start[2 * c]; j < end; ++j) {
+          const Vec3 d = x - g.pos[j];
+          const Real r2 = dot(d, d);
+          if (r2 < r2max) f(static_cast<int>(j), d, r2);
+        }
       }
     }
   }
@@ -62,9 +89,10 @@ public:
   void set_spec(const GridSpec& s) { spec_ = s; }
   [[nodiscard]] const GridSpec& spec() const { return spec_; }
 
-  // keys[i] = cell of pos[i], or cells() for particles flagged dead[i] != 0,
-  // then stable sort. After this, permutation()[i] is the old index of new i.
-  void sort(const Vec3* pos, const std::uint8_t* dead, int n);
+  // keys[i] = 2 cell(pos[i]) + cls[i] (cls 0: fluid, 1: boundary), or 2 cells() for
+  // cls[i] == 2 (dead), then stable sort. permutation()[i] is the old index of new i.
+  // cls may be null (all class 0).
+  void sort(const Vec3* pos, const std::uint8_t* cls, int n);
   // Builds cell_start from the sorted keys; returns the number of live particles.
   int build_cell_start(int n);
 

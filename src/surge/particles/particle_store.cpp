@@ -17,7 +17,7 @@ void ParticleStore::upload(const HostParticles& h) {
   acc_.resize(n);
   drho_.resize(n);
   vsig_.resize(n);
-  dead_.resize(n);
+  cls_.resize(n);
   par::fill(acc_, Vec3{});
   par::fill(drho_, Real(0));
   par::fill(vsig_, Real(0));
@@ -49,11 +49,12 @@ void ParticleStore::reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const st
 }
 
 int ParticleStore::sort(neighbour::UniformGrid& grid) {
-  dead_.resize(static_cast<std::size_t>(n_));
-  std::uint8_t* dead = dead_.data();
+  cls_.resize(static_cast<std::size_t>(n_));
+  std::uint8_t* dead = cls_.data();
   const std::uint8_t* kind = kind_.data();
-  const auto removed = static_cast<std::uint8_t>(Kind::Removed);
-  par::parallel_for(n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 1 : 0; });
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  // Sort class: fluid first in each cell, then boundary particles; removed ones last.
+  par::parallel_for(n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
   grid.sort(pos_.data(), dead, n_);
   const std::uint32_t* perm = grid.permutation();
   reorder(pos_, tmp3_, perm);
@@ -82,7 +83,7 @@ std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
   for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_, &tmp3_}) b += x->bytes();
   for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_, &tmp1_}) b += x->bytes();
-  return b + kind_.bytes() + dead_.bytes() + tmpb_.bytes() + id_.bytes() + tmpu_.bytes();
+  return b + kind_.bytes() + cls_.bytes() + tmpb_.bytes() + id_.bytes() + tmpu_.bytes();
 }
 
 } // namespace surge::particles

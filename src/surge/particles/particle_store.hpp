@@ -59,7 +59,7 @@ private:
   int n_ = 0;
   par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
   par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
-  par::Buffer<std::uint8_t> kind_, dead_;
+  par::Buffer<std::uint8_t> kind_, cls_;
   par::Buffer<std::uint32_t> id_;
   par::Buffer<Vec3> tmp3_;
   par::Buffer<Real> tmp1_;

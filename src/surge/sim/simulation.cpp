@@ -85,7 +85,7 @@ std::string csv_text(const std::vector<std::string>& names, const std::vector<st
 
 double first_dt(const Case& c) {
   const double h = c.h();
-  const double c0 = sph::sound_speed(c.sph.eta, c.g(), c.water_depth());
+  const double c0 = c.sound_speed();
   return c.sph.cfl * std::min(std::sqrt(h / c.g()), h / c0);
 }
 
@@ -102,7 +102,7 @@ int check(const Case& c) {
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
-              sph::sound_speed(c.sph.eta, c.g(), c.water_depth()));
+              c.sound_speed());
   std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
   std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow accelerates)\n",
               hms(steps * n / assumed_particle_steps_per_s).c_str(), assumed_particle_steps_per_s);
@@ -178,6 +178,7 @@ int run(const Case& c, const RunOptions& opt) {
   std::string failure;
   while (t < c.time.end - eps) {
     if (opt.stop && *opt.stop) break;
+    if (c.time.max_steps > 0 && solver.step_count() >= c.time.max_steps) break;
     const double dt_max = std::min({next_out, next_gauge, c.time.end}) - t;
     const sph::StepStats s = solver.step(dt_max);
     t += s.dt;

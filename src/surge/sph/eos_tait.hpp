@@ -22,7 +22,5 @@ struct TaitEos {
   [[nodiscard]] SURGE_HD Real density(Real p) const { return rho0 * std::pow(1 + p / b, Real(1.0 / 7.0)); }
 };
 
-// c0 = eta * sqrt(|g| * Hmax)
-inline double sound_speed(double eta, double g, double hmax) { return eta * std::sqrt(g * hmax); }
 
 } // namespace surge::sph

@@ -10,20 +10,21 @@ struct WendlandC2 {
   Real h = 1;
   Real ad = 0;   // 21 / (16 pi h^3)
   Real h2_inv = 1;
+  Real h_inv = 1;
 
   SURGE_HD WendlandC2() = default;
-  SURGE_HD explicit WendlandC2(Real h_) : h(h_), ad(Real(21.0 / (16.0 * 3.14159265358979323846)) / (h_ * h_ * h_)), h2_inv(1 / (h_ * h_)) {}
+  SURGE_HD explicit WendlandC2(Real h_) : h(h_), ad(Real(21.0 / (16.0 * 3.14159265358979323846)) / (h_ * h_ * h_)), h2_inv(1 / (h_ * h_)), h_inv(1 / h_) {}
 
   [[nodiscard]] SURGE_HD Real support() const { return 2 * h; }
   [[nodiscard]] SURGE_HD Real w(Real r) const {
-    const Real q = r / h;
+    const Real q = r * h_inv;
     if (q >= 2) return 0;
     const Real t = 1 - q / 2;
     return ad * t * t * t * t * (2 * q + 1);
   }
   // (1/r) dW/dr, so that grad_i W_ij = r_ij * f(r); finite at r -> 0.
   [[nodiscard]] SURGE_HD Real dw_over_r(Real r) const {
-    const Real q = r / h;
+    const Real q = r * h_inv;
     if (q >= 2) return 0;
     const Real t = 1 - q / 2;
     return -5 * ad * h2_inv * t * t * t;

@@ -44,23 +44,28 @@ struct Rates {
   const Real c0 = prm.eos.c0;
   Real drho = 0, diff = 0, vsig = 0;
   Vec3 acc{};
-  neighbour::for_each_neighbour(g, xi, r2max, [&](int j, const Vec3& rij, Real r2) {
+  // One pair term; boundary particles (fluid_i false) only ever see fluid j.
+  auto pair = [&](int j, const Vec3& rij, Real r2) {
     if (j == i) return;
     const bool fluid_j = p.kind[j] == static_cast<std::uint8_t>(Kind::Fluid);
-    if (!fluid_i && !fluid_j) return; // boundary particles see fluid only
     const Real r = std::sqrt(r2);
     const Vec3 grad = rij * prm.kernel.dw_over_r(r);
     const Vec3 vij = vi - p.vel[j];
     const Real rhoj = p.rho[j];
     const Real vr = dot(vij, rij);
     drho += prm.mass * dot(vij, grad);
-    const Real mu = h * vr / (r2 + eta2);
-    vsig = std::fmax(vsig, std::fabs(mu));
-    if (fluid_i && fluid_j) diff += prm.mass * 4 / (rhoi + rhoj) * (rhoj - rhoi) * (-dot(rij, grad)) / (r2 + eta2);
+    const Real inv_r2e = 1 / (r2 + eta2);
+    const Real inv_rho_sum = 1 / (rhoi + rhoj);
+    const Real mu = h * vr * inv_r2e;
+    const Real amu = mu < 0 ? -mu : mu;
+    vsig = amu > vsig ? amu : vsig;
+    if (fluid_i && fluid_j) diff += prm.mass * 4 * inv_rho_sum * (rhoj - rhoi) * (-dot(rij, grad)) * inv_r2e;
     Real coef = (pi + p.press[j]) / (rhoi * rhoj);
-    if (vr < 0) coef += -prm.alpha * c0 * mu / ((rhoi + rhoj) / 2);
+    if (vr < 0) coef -= prm.alpha * c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
     acc -= grad * (prm.mass * coef);
-  });
+  };
+  if (fluid_i) neighbour::for_each_neighbour(g, xi, r2max, pair);
+  else neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
   Rates out;
   out.drho = drho + prm.delta * h * c0 * diff;
   out.acc = fluid_i ? acc + prm.gravity : acc;

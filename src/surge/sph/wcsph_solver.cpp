@@ -18,7 +18,7 @@ InitialState build_initial_state(const Case& c) {
   for (const auto& w : c.walls) meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
 
   const double g = c.g(), rho0 = c.sph.rho0;
-  const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(sound_speed(c.sph.eta, g, c.water_depth())));
+  const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
   for (const auto& f : c.fluid) {
@@ -51,7 +51,7 @@ InitialState build_initial_state(const Case& c) {
 WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
   const double h = c.h();
   prm_.kernel = WendlandC2(static_cast<Real>(h));
-  prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(sound_speed(c.sph.eta, c.g(), c.water_depth())));
+  prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
   prm_.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
   prm_.alpha = static_cast<Real>(c.sph.alpha);
   prm_.delta = static_cast<Real>(c.sph.delta);

@@ -1,0 +1,103 @@
+// Case files: defaults, overrides, and one clear error (file, line, key) per bad input.
+#include "test_helpers.hpp"
+
+#include "surge/core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace surge;
+
+namespace {
+
+// Expects an InputError whose message names `key` and whose line is `line` (0: any).
+void expect_error(const std::string& text, int line, const std::string& key, const std::string& fragment,
+                  const io::Overrides& sets = {}) {
+  try {
+    (void)io::read_case_text(text, "bad.yaml", sets);
+    ADD_FAILURE() << "no error for key " << key;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(e.key(), key) << msg;
+    if (line > 0) {
+      EXPECT_EQ(e.line(), line) << msg;
+    }
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+    EXPECT_EQ(msg.rfind("bad.yaml", 0), 0U) << msg;
+  }
+}
+
+} // namespace
+
+TEST(CaseReader, DefaultsFromSpec) {
+  const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml");
+  EXPECT_DOUBLE_EQ(c.sph.h_over_dp, 1.2);
+  EXPECT_DOUBLE_EQ(c.sph.alpha, 0.01);
+  EXPECT_DOUBLE_EQ(c.sph.delta, 0.1);
+  EXPECT_DOUBLE_EQ(c.sph.eta, 20);
+  EXPECT_DOUBLE_EQ(c.sph.cfl, 0.2);
+  EXPECT_EQ(c.sph.euler_every, 40);
+  EXPECT_DOUBLE_EQ(c.gravity.z, -9.81);
+  EXPECT_DOUBLE_EQ(c.water_depth(), 0.16);
+  ASSERT_EQ(c.walls.size(), 1U);
+  EXPECT_EQ(c.walls[0].open.size(), 1U);
+}
+
+TEST(CaseReader, OverridesAndRoundTrip) {
+  const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml",
+                                    {"dp=0.02", "time.end=0.5", "sph.alpha=0.05", "fluid.0.velocity=[1,0,0]"});
+  EXPECT_DOUBLE_EQ(c.dp, 0.02);
+  EXPECT_DOUBLE_EQ(c.time.end, 0.5);
+  EXPECT_DOUBLE_EQ(c.sph.alpha, 0.05);
+  EXPECT_DOUBLE_EQ(c.fluid[0].velocity.x, 1.0);
+  // case.yaml as written must read back to the same case.
+  const Case d = io::read_case_text(io::to_yaml(c), "t.yaml");
+  EXPECT_EQ(io::to_yaml(c), io::to_yaml(d));
+  EXPECT_DOUBLE_EQ(d.sph.alpha, 0.05);
+}
+
+TEST(CaseReader, MalformedYaml) { expect_error("name: x\ndp: [0.01\n", 0, "", "malformed YAML"); }
+
+TEST(CaseReader, UnknownKeyIsATypo) {
+  expect_error(test::tank_case(0.01) + "sph: {h_over_dp: 1.2, alpah: 0.01}\n", 7, "sph.alpah", "did you mean 'alpha'");
+}
+
+TEST(CaseReader, WrongType) { expect_error(test::tank_case(0.01) + "sph: {cfl: fast}\n", 7, "sph.cfl", "expected a number"); }
+
+TEST(CaseReader, NonPositiveSpacing) {
+  std::string t = test::tank_case(0.01);
+  t.replace(t.find("dp: "), std::string("dp: 0.010000").size(), "dp: -0.01");
+  expect_error(t, 2, "dp", "must be positive");
+}
+
+TEST(CaseReader, NonPositiveSpacingFromCommandLine) {
+  expect_error(test::tank_case(0.01), 0, "dp", "--set dp", {"dp=0"});
+}
+
+
+TEST(CaseReader, WaterOutsideTheTank) {
+  const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
+                        "fluid:\n  - box: {min: [0,0,0], max: [1.5,1,0.5]}\n";
+  expect_error(t, 5, "fluid.0.box", "outside the domain");
+}
+
+TEST(CaseReader, EmptyFluidRegion) {
+  const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
+                        "fluid:\n  - box: {min: [0,0,0], max: [0.5,0.005,0.5]}\n";
+  expect_error(t, 5, "fluid.0.box", "thinner than dp");
+}
+
+TEST(CaseReader, MissingMesh) {
+  const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
+                        "walls:\n  - mesh: no_such_obstacle.stl\n";
+  expect_error(t, 5, "walls.0.mesh", "not found");
+}
+
+TEST(CaseReader, MissingRequiredKey) { expect_error("name: x\ndomain: {min: [0,0,0], max: [1,1,1]}\n", 1, "dp", "required"); }
+
+TEST(CaseReader, UnknownGaugeType) {
+  expect_error(test::tank_case(0.01) + "gauges:\n  - {name: G, type: speed, at: [0.1, 0.05, 0.05]}\n", 8, "gauges.0.type",
+               "unknown gauge type");
+}

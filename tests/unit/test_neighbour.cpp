@@ -1,0 +1,125 @@
+// Uniform-grid neighbour search against a brute-force oracle.
+#include "surge/neighbour/uniform_grid.hpp"
+#include "surge/particles/particle_store.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+using namespace surge;
+
+namespace {
+
+float f(int i) { return static_cast<float>(i); }
+
+using Pairs = std::vector<std::vector<std::uint32_t>>; // by particle id: sorted neighbour ids
+
+Pairs brute_force(const std::vector<Vec3>& pos, Real r) {
+  Pairs out(pos.size());
+  for (std::size_t i = 0; i < pos.size(); ++i)
+    for (std::size_t j = 0; j < pos.size(); ++j) {
+      const Vec3 d = pos[i] - pos[j];
+      if (dot(d, d) < r * r) out[i].push_back(static_cast<std::uint32_t>(j));
+    }
+  return out;
+}
+
+Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Vec3& hi) {
+  particles::HostParticles h;
+  for (std::size_t i = 0; i < pos.size(); ++i) h.push(pos[i], Vec3{}, 1000, Kind::Fluid, static_cast<std::uint32_t>(i));
+  particles::ParticleStore store;
+  store.upload(h);
+  neighbour::UniformGrid grid;
+  grid.set_spec(neighbour::make_grid(lo, hi, r));
+  EXPECT_EQ(store.sort(grid), 0);
+  auto v = store.view();
+  const auto g = grid.view(v.pos);
+  Pairs out(pos.size());
+  // Host-side walk over the sorted arrays (the CPU build's buffers are host memory).
+  for (int i = 0; i < v.n; ++i)
+    neighbour::for_each_neighbour(g, v.pos[i], r * r, [&](int j, const Vec3&, Real) { out[v.id[i]].push_back(v.id[j]); });
+  for (auto& l : out) std::sort(l.begin(), l.end());
+  return out;
+}
+
+void expect_same(const std::vector<Vec3>& pos, Real r, Vec3 lo, Vec3 hi) {
+  const Pairs a = brute_force(pos, r), b = grid_search(pos, r, lo, hi);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]) << "particle " << i;
+    pairs += a[i].size();
+  }
+  if (!pos.empty()) {
+    EXPECT_GT(pairs, pos.size());
+  } // the sets are not trivially self-only
+}
+
+} // namespace
+
+TEST(Neighbour, RandomMatchesBruteForce) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<Vec3> pos;
+  for (int i = 0; i < 3000; ++i) pos.push_back({u(rng), u(rng) * 0.5f, u(rng) * 0.3f});
+  expect_same(pos, 0.05f, {0, 0, 0}, {1, 0.5f, 0.3f});
+}
+
+TEST(Neighbour, ClusteredMatchesBruteForce) {
+  std::mt19937 rng(2);
+  std::normal_distribution<float> nd(0, 0.01f);
+  std::vector<Vec3> pos;
+  for (int c = 0; c < 5; ++c)
+    for (int i = 0; i < 300; ++i) pos.push_back({0.2f * f(c) + 0.1f + nd(rng), 0.5f + nd(rng), 0.5f + nd(rng)});
+  expect_same(pos, 0.02f, {0, 0, 0}, {1, 1, 1});
+}
+
+TEST(Neighbour, BoundaryTouchingAndOutsideClampedCells) {
+  // Points exactly on the grid faces and a few outside it (clamped into edge cells).
+  std::vector<Vec3> pos;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j) {
+      pos.push_back({0.1f * f(i), 0.1f * f(j), 0});
+      pos.push_back({0.1f * f(i), 1, 0.1f * f(j)});
+    }
+  pos.push_back({-0.05f, 0.5f, 0.5f});
+  pos.push_back({1.05f, 0.5f, 0.5f});
+  expect_same(pos, 0.15f, {0, 0, 0}, {1, 1, 1});
+}
+
+TEST(Neighbour, DegenerateSets) {
+  expect_same({}, 0.1f, {0, 0, 0}, {1, 1, 1});                       // empty domain
+  const Pairs one = grid_search({{0.5f, 0.5f, 0.5f}}, 0.1f, {0, 0, 0}, {1, 1, 1});
+  ASSERT_EQ(one.size(), 1U);
+  EXPECT_EQ(one[0], std::vector<std::uint32_t>{0});                    // only itself
+  std::vector<Vec3> same_cell;                                        // all in one cell
+  for (int i = 0; i < 50; ++i) same_cell.push_back({0.5f + 0.001f * f(i), 0.5f, 0.5f});
+  expect_same(same_cell, 0.2f, {0, 0, 0}, {1, 1, 1});
+}
+
+TEST(Neighbour, SameResultOnOneAndTwoThreads) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<Vec3> pos;
+  for (int i = 0; i < 5000; ++i) pos.push_back({u(rng), u(rng), u(rng)});
+  par::set_threads(1);
+  const Pairs a = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1});
+  par::set_threads(2);
+  const Pairs b = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1});
+  EXPECT_EQ(a, b);
+}
+
+TEST(Neighbour, RemovedParticlesAreDropped) {
+  particles::HostParticles h;
+  for (int i = 0; i < 10; ++i) h.push({0.1f * f(i), 0, 0}, Vec3{}, 1000, i % 3 == 0 ? Kind::Removed : Kind::Fluid, static_cast<std::uint32_t>(i));
+  particles::ParticleStore store;
+  store.upload(h);
+  neighbour::UniformGrid grid;
+  grid.set_spec(neighbour::make_grid({0, 0, 0}, {1, 1, 1}, 0.2f));
+  EXPECT_EQ(store.sort(grid), 4);
+  EXPECT_EQ(store.size(), 6);
+  auto v = store.view();
+  for (int i = 0; i < v.n; ++i) EXPECT_NE(v.id[i] % 3, 0U);
+}

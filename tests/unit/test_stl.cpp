@@ -1,0 +1,71 @@
+// STL reading (ascii and binary give the same triangles) and closest points.
+#include "surge/core/error.hpp"
+#include "surge/geometry/stl_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace surge;
+using namespace surge::geometry;
+
+namespace {
+const char* ascii_two =
+    "solid quad\n"
+    " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 1 1 0\n  endloop\n endfacet\n"
+    " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 1 0\n   vertex 0 1 0\n  endloop\n endfacet\n"
+    "endsolid quad\n";
+
+std::string to_binary(const Mesh& m) {
+  std::string s(80, ' ');
+  const auto n = static_cast<std::uint32_t>(m.tris.size());
+  s.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : m.tris) {
+    float v[12] = {0, 0, 0};
+    int k = 3;
+    for (const Vec3d& p : {t.a, t.b, t.c})
+      for (int c = 0; c < 3; ++c) v[k++] = static_cast<float>(p[c]);
+    s.append(reinterpret_cast<const char*>(v), sizeof v);
+    s.append(2, '\0');
+  }
+  return s;
+}
+} // namespace
+
+TEST(Stl, AsciiAndBinaryAgree) {
+  const Mesh a = parse_stl(ascii_two, "a.stl");
+  ASSERT_EQ(a.tris.size(), 2U);
+  EXPECT_DOUBLE_EQ(a.tris[0].normal().z, 1.0);
+  const Mesh b = parse_stl(to_binary(a), "b.stl");
+  ASSERT_EQ(b.tris.size(), 2U);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_DOUBLE_EQ(a.tris[i].c.x, b.tris[i].c.x);
+    EXPECT_DOUBLE_EQ(a.tris[i].c.y, b.tris[i].c.y);
+  }
+}
+
+TEST(Stl, ErrorsNameTheLine) {
+  std::string bad = ascii_two;
+  bad.replace(bad.find("vertex 1 0 0"), 12, "vertex 1 x 0");
+  try {
+    (void)parse_stl(bad, "bad.stl");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_EQ(e.file(), "bad.stl");
+  }
+  EXPECT_THROW((void)parse_stl("garbage", "g.stl"), InputError);
+  EXPECT_THROW((void)parse_stl("solid empty\nendsolid empty\n", "e.stl"), InputError);
+}
+
+TEST(Stl, ClosestPointRegions) {
+  const Triangle t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const Vec3d face = closest_point(t, {0.2, 0.2, 1});
+  EXPECT_NEAR(face.x, 0.2, 1e-15); EXPECT_NEAR(face.y, 0.2, 1e-15); EXPECT_NEAR(face.z, 0, 1e-15);
+  const Vec3d edge = closest_point(t, {0.5, -1, 0.3});
+  EXPECT_NEAR(edge.x, 0.5, 1e-15); EXPECT_NEAR(edge.y, 0, 1e-15);
+  const Vec3d hyp = closest_point(t, {1, 1, 0});
+  EXPECT_NEAR(hyp.x, 0.5, 1e-15); EXPECT_NEAR(hyp.y, 0.5, 1e-15);
+  const Vec3d vertex = closest_point(t, {-1, -1, 0});
+  EXPECT_NEAR(vertex.x, 0, 1e-15); EXPECT_NEAR(vertex.y, 0, 1e-15);
+}
