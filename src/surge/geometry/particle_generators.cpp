@@ -8,10 +8,11 @@ namespace surge::geometry {
 int wall_layers(const Case& c) { return static_cast<int>(std::ceil(2.0 * c.sph.h_over_dp - 1e-9)); }
 
 namespace {
-// Coordinates (i + 1/2) dp from lo up to hi.
+// Coordinates (i + 1/2) dp from lo up to hi. A region short of a whole number of
+// spacings by less than 1e-3 dp (a rounded dp in a case file) still gets its last layer.
 std::vector<double> lattice(double lo, double hi, double dp) {
   std::vector<double> v;
-  const auto n = static_cast<long>(std::floor((hi - lo) / dp + 1e-9));
+  const auto n = static_cast<long>(std::floor((hi - lo) / dp + 1e-3));
   for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * dp);
   return v;
 }

@@ -255,7 +255,7 @@ Case parse(const YAML::Node& root, Reader& r) {
       reg.line = f.Mark().line + 1;
       if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
         r.fail(f["box"], path + ".box", "fluid region lies (partly) outside the domain; enlarge domain or move the water");
-      const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-9); };
+      const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-3); };
       if (cells(0) < 1 || cells(1) < 1 || cells(2) < 1)
         r.fail(f["box"], path + ".box", "fluid region is thinner than dp and would hold no particle");
       c.fluid.push_back(reg);

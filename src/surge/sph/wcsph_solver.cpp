@@ -48,6 +48,113 @@ InitialState build_initial_state(const Case& c) {
   return s;
 }
 
+namespace detail {
+// The loops of one SPH step, as free functions: nvcc's extended lambdas may not
+// live in private member functions.
+
+// EOS then per-particle rates (continuity, momentum, signal speed).
+void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+    const Rates r = wcsph_rates(prm, g, p, i);
+    p.acc[i] = r.acc;
+    p.drho[i] = r.drho;
+    p.vsig[i] = r.vsig;
+  });
+}
+
+// min over fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL factor.
+Real min_dt(const WcsphParams& prm, const particles::ParticleView& p) {
+  const Real h = prm.kernel.h, c0 = prm.eos.c0;
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  const Real inf = std::numeric_limits<Real>::max();
+  const Real dt = par::parallel_reduce(p.n, inf, SURGE_LAMBDA(int i) {
+    if (p.kind[i] != fluid) return inf;
+    const Real a = norm(p.acc[i]);
+    const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
+    const Real dtcv = h / (c0 + p.vsig[i]);
+    return dtf < dtcv ? dtf : dtcv; }, par::Min{});
+  return dt == inf ? h / c0 : dt;
+}
+
+// Flags fluid particles outside [lo, hi], with density outside [rmin, rmax] or non-finite
+// as Removed. Returns counts packed as non-finite << 42 | density << 21 | domain.
+long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real rmin, Real rmax) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
+  return par::parallel_reduce(p.n, 0LL, SURGE_LAMBDA(int i) -> long long {
+    if (p.kind[i] != fluid) return 0;
+    const Vec3 x = p.pos[i];
+    const Real rho = p.rho[i];
+    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
+                        std::isfinite(p.vel[i].x) && std::isfinite(p.vel[i].y) && std::isfinite(p.vel[i].z);
+    long long code = 0;
+    if (!finite) code = 1LL << 42;
+    else if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) code = 1;
+    else if (rho < rmin || rho > rmax) code = 1LL << 21;
+    if (code) p.kind[i] = removed;
+    return code; }, par::Sum{});
+}
+
+// Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
+// an Euler step when `euler`. Boundary densities are clamped at rho0.
+void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+    const Real rho_old = p.rho_prev[i];
+    const Real rho_now = p.rho[i];
+    Real rho_new = euler ? rho_now + dt * p.drho[i] : rho_old + 2 * dt * p.drho[i];
+    if (p.kind[i] == fluid) {
+      const Vec3 v_now = p.vel[i];
+      const Vec3 a = p.acc[i];
+      p.pos[i] += v_now * dt + a * (dt * dt / 2);
+      p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
+      p.vel_prev[i] = v_now;
+    } else if (rho_new < rho0) {
+      rho_new = rho0; // boundary particles must not pull the fluid
+    }
+    p.rho_prev[i] = rho_now;
+    p.rho[i] = rho_new;
+  });
+}
+
+// Symplectic position-Verlet, first half: state n saved in *_prev, advanced by dt/2.
+void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  const Real half = dt / 2;
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+    p.rho_prev[i] = p.rho[i];
+    Real rho = p.rho[i] + half * p.drho[i];
+    if (p.kind[i] == fluid) {
+      p.pos_prev[i] = p.pos[i];
+      p.vel_prev[i] = p.vel[i];
+      p.pos[i] += p.vel[i] * half;
+      p.vel[i] += p.acc[i] * half;
+    } else if (rho < rho0) {
+      rho = rho0;
+    }
+    p.rho[i] = rho;
+  });
+}
+
+// Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2.
+void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  const Real half = dt / 2;
+  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
+    Real rho = p.rho_prev[i] + dt * p.drho[i];
+    if (p.kind[i] == fluid) {
+      const Vec3 v0 = p.vel_prev[i];
+      const Vec3 v1 = v0 + p.acc[i] * dt;
+      p.vel[i] = v1;
+      p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
+    } else if (rho < rho0) {
+      rho = rho0;
+    }
+    p.rho[i] = rho;
+  });
+}
+} // namespace detail
+
 WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
   const double h = c.h();
   prm_.kernel = WendlandC2(static_cast<Real>(h));
@@ -71,16 +178,8 @@ void WcsphSolver::sort_and_rates() {
   const auto t0 = std::chrono::steady_clock::now();
   store_.sort(grid_);
   time_sort += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  auto p = store_.view();
-  const auto g = grid_.view(p.pos);
-  const WcsphParams prm = prm_;
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-    const Rates r = wcsph_rates(prm, g, p, i);
-    p.acc[i] = r.acc;
-    p.drho[i] = r.drho;
-    p.vsig[i] = r.vsig;
-  });
+  const auto p = store_.view();
+  detail::compute_rates(prm_, grid_.view(p.pos), p);
   fresh_ = true;
 }
 
@@ -88,20 +187,7 @@ void WcsphSolver::refresh() {
   if (!fresh_) sort_and_rates();
 }
 
-double WcsphSolver::dt_from_rates() {
-  auto p = store_.view();
-  const Real h = prm_.kernel.h, c0 = prm_.eos.c0;
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  // min over fluid of min(sqrt(h/|a|), h/(c0 + vsig))
-  const Real inf = std::numeric_limits<Real>::max();
-  const Real dt = par::parallel_reduce(p.n, inf, SURGE_LAMBDA(int i) {
-    if (p.kind[i] != fluid) return inf;
-    const Real a = norm(p.acc[i]);
-    const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
-    const Real dtcv = h / (c0 + p.vsig[i]);
-    return dtf < dtcv ? dtf : dtcv; }, par::Min{});
-  return case_.sph.cfl * static_cast<double>(dt == inf ? h / c0 : dt);
-}
+double WcsphSolver::dt_from_rates() { return case_.sph.cfl * static_cast<double>(detail::min_dt(prm_, store_.view())); }
 
 double WcsphSolver::stable_dt() {
   refresh();
@@ -109,23 +195,8 @@ double WcsphSolver::stable_dt() {
 }
 
 int WcsphSolver::flag_removals(StepStats& s) {
-  auto p = store_.view();
-  const Vec3 lo = dom_lo_, hi = dom_hi_;
-  const Real rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0), rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
-  // Counts packed into one integer: non-finite << 42 | density << 21 | domain.
-  const long long packed = par::parallel_reduce(p.n, 0LL, SURGE_LAMBDA(int i) -> long long {
-    if (p.kind[i] != fluid) return 0;
-    const Vec3 x = p.pos[i];
-    const Real rho = p.rho[i];
-    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
-                        std::isfinite(p.vel[i].x) && std::isfinite(p.vel[i].y) && std::isfinite(p.vel[i].z);
-    long long code = 0;
-    if (!finite) code = 1LL << 42;
-    else if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) code = 1;
-    else if (rho < rmin || rho > rmax) code = 1LL << 21;
-    if (code) p.kind[i] = removed;
-    return code; }, par::Sum{});
+  const auto rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0), rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
+  const long long packed = detail::flag_removals(store_.view(), dom_lo_, dom_hi_, rmin, rmax);
   s.removed_domain = static_cast<int>(packed & ((1LL << 21) - 1));
   s.removed_density = static_cast<int>((packed >> 21) & ((1LL << 21) - 1));
   s.non_finite = static_cast<int>(packed >> 42);
@@ -140,64 +211,13 @@ StepStats WcsphSolver::step(double dt_max) {
   s.dt = dt_d;
   const Real dt = static_cast<Real>(dt_d);
   const Real rho0 = prm_.eos.rho0;
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  auto p = store_.view();
+  const auto p = store_.view();
   if (!symplectic_) {
-    // Verlet (Monaghan 1989) with an Euler step every euler_every steps.
-    const bool euler = steps_ % case_.sph.euler_every == 0;
-    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-      const Real rho_old = p.rho_prev[i];
-      const Real rho_now = p.rho[i];
-      Real rho_new = euler ? rho_now + dt * p.drho[i] : rho_old + 2 * dt * p.drho[i];
-      if (p.kind[i] == fluid) {
-        const Vec3 v_now = p.vel[i];
-        const Vec3 a = p.acc[i];
-        p.pos[i] += v_now * dt + a * (dt * dt / 2);
-        p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
-        p.vel_prev[i] = v_now;
-      } else if (rho_new < rho0) {
-        rho_new = rho0; // boundary particles must not pull the fluid
-      }
-      p.rho_prev[i] = rho_now;
-      p.rho[i] = rho_new;
-    });
+    detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0);
   } else {
-    // Symplectic position-Verlet predictor-corrector (second order).
-    const Real half = dt / 2;
-    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-      p.rho_prev[i] = p.rho[i];
-      Real rho = p.rho[i] + half * p.drho[i];
-      if (p.kind[i] == fluid) {
-        p.pos_prev[i] = p.pos[i];
-        p.vel_prev[i] = p.vel[i];
-        p.pos[i] += p.vel[i] * half;
-        p.vel[i] += p.acc[i] * half;
-      } else if (rho < rho0) {
-        rho = rho0;
-      }
-      p.rho[i] = rho;
-    });
-    const auto g = grid_.view(p.pos);
-    const WcsphParams prm = prm_;
-    par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
-    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-      const Rates r = wcsph_rates(prm, g, p, i);
-      p.acc[i] = r.acc;
-      p.drho[i] = r.drho;
-      p.vsig[i] = r.vsig;
-    });
-    par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-      Real rho = p.rho_prev[i] + dt * p.drho[i];
-      if (p.kind[i] == fluid) {
-        const Vec3 v0 = p.vel_prev[i];
-        const Vec3 v1 = v0 + p.acc[i] * dt;
-        p.vel[i] = v1;
-        p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
-      } else if (rho < rho0) {
-        rho = rho0;
-      }
-      p.rho[i] = rho;
-    });
+    detail::symplectic_predict(p, dt, rho0);
+    detail::compute_rates(prm_, grid_.view(p.pos), p);
+    detail::symplectic_correct(p, dt, rho0);
   }
   ++steps_;
   fresh_ = false;

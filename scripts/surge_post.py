@@ -1,0 +1,77 @@
+"""Reading surge output for validation and tests.
+
+VTK files are read with VTK's own Python reader (an implementation independent
+of surge's writer); gauges.csv and summary.json with numpy / json.
+"""
+import json
+import os
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+
+def read_vtp(path):
+    """Returns a dict of numpy arrays: position (n,3), velocity, density, pressure, kind, id."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    if reader.GetErrorCode() != 0:
+        raise IOError(f"VTK could not read {path}")
+    poly = reader.GetOutput()
+    out = {}
+    if poly.GetNumberOfPoints() > 0:
+        out["position"] = vtk_to_numpy(poly.GetPoints().GetData()).astype(float)
+    else:
+        out["position"] = np.zeros((0, 3))
+    pd = poly.GetPointData()
+    for k in range(pd.GetNumberOfArrays()):
+        arr = pd.GetArray(k)
+        out[arr.GetName()] = vtk_to_numpy(arr)
+    return out
+
+
+def read_pvd(path):
+    """[(time, absolute vtp path)] in time order."""
+    root = ET.parse(path).getroot()
+    base = os.path.dirname(path)
+    items = [(float(d.get("timestep")), os.path.join(base, d.get("file"))) for d in root.iter("DataSet")]
+    return sorted(items)
+
+
+def read_gauges(path):
+    """(names, array with one row per sample; column 0 is time)."""
+    with open(path) as f:
+        names = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return names, data
+
+
+def read_summary(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def surge_front(positions, dp, spray_fraction=0.0005):
+    """Leading-edge x of the water: the particle centre beyond which only a small
+    fraction of the particles lies (isolated droplets ahead of the front are ignored),
+    plus dp/2, since a particle stands for a cube of water of side dp."""
+    x = np.sort(positions[:, 0])
+    if len(x) == 0:
+        return 0.0
+    k = max(0, len(x) - 1 - int(spray_fraction * len(x)))
+    return x[k] + 0.5 * dp
+
+
+def read_front_data(path):
+    """Columns T, Z of a surge-front file in ../shared/data (comment lines start with #)."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#") or line[0].isalpha():
+                continue
+            rows.append([float(v) for v in line.replace(",", " ").split()])
+    return np.array(rows)

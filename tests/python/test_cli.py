@@ -1,0 +1,163 @@
+"""End-to-end tests of the surge program: bad input is rejected cleanly, a run
+writes readable VTK (checked with VTK's own reader), gauges, summary and case.yaml,
+a diverging run stops with exit code 3 keeping its earlier outputs, and Ctrl-C stops
+cleanly."""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts"))
+import surge_post  # noqa: E402
+
+SURGE, WORK = sys.argv[1], sys.argv[2]
+failures = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def run(args, **kw):
+    return subprocess.run([SURGE] + args, capture_output=True, text=True, **kw)
+
+
+GOOD = """name: tiny
+dp: 0.02
+time: {end: 0.06, output_every: 0.02, gauge_every: 0.01}
+domain: {min: [0, 0, 0], max: [0.4, 0.1, 0.4]}
+fluid:
+  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}
+walls:
+  - {name: tank, box: {min: [0, 0, 0], max: [0.4, 0.1, 0.3]}, open: [zmax]}
+gauges:
+  - {name: H1, type: height, x: 0.05, y: 0.05}
+  - {name: P1, type: pressure, at: [0.05, 0.05, 0.03]}
+"""
+
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+
+
+def write(name, text):
+    p = os.path.join(WORK, name)
+    with open(p, "w") as f:
+        f.write(text)
+    return p
+
+
+# --- command line basics
+r = run(["--version"])
+check(r.returncode == 0 and "surge" in r.stdout, "--version")
+r = run(["--help"])
+check(r.returncode == 0 and "surge run CASE" in r.stdout, "--help")
+r = run(["frobnicate"])
+check(r.returncode == 2, "unknown command exits 2")
+
+# --- bad input: one message naming file, line and key; exit 2; nothing written
+bad_cases = {
+    "malformed": (GOOD.replace("dp: 0.02", "dp: [0.02"), "malformed YAML"),
+    "typo": (GOOD.replace("time: {end", "time: {ned"), "'time.ned'"),
+    "wrong_type": (GOOD.replace("dp: 0.02", "dp: small"), "'dp': expected a number"),
+    "missing_mesh": (GOOD.replace("walls:\n", "walls:\n  - {mesh: nowhere.stl}\n"), "'walls.0.mesh'"),
+    "negative_dp": (GOOD.replace("dp: 0.02", "dp: -0.02"), "'dp': particle spacing must be positive"),
+    "outside": (GOOD.replace("max: [0.1, 0.1, 0.2]", "max: [0.1, 0.1, 0.5]"), "outside the domain"),
+    "empty_region": (GOOD.replace("max: [0.1, 0.1, 0.2]", "max: [0.1, 0.01, 0.2]"), "thinner than dp"),
+}
+for name, (text, fragment) in bad_cases.items():
+    path = write(f"bad_{name}.yaml", text)
+    out = os.path.join(WORK, f"out_bad_{name}")
+    for cmd in (["check", path], ["run", path, "--out", out]):
+        r = run(cmd)
+        lines = [l for l in r.stderr.strip().splitlines() if l]
+        check(r.returncode == 2, f"{name}: {cmd[0]} exits 2 (got {r.returncode})")
+        check(len(lines) >= 1 and lines[0].startswith("error: " + path), f"{name}: message names the file: {lines[:1]}")
+        check(fragment in r.stderr, f"{name}: message says '{fragment}'")
+        if name not in ("malformed",):
+            check(":" in lines[0][len("error: " + path):][:8], f"{name}: message gives a line number")
+    check(not os.path.exists(out), f"{name}: nothing written to the output folder")
+
+r = run(["check", write("good.yaml", GOOD), "--set", "time.ned=1"])
+check(r.returncode == 2 and "--set" in r.stderr, "--set typo is rejected and attributed to --set")
+
+# --- surge check on a good case
+r = run(["check", os.path.join(WORK, "good.yaml")])
+check(r.returncode == 0 and "fluid" in r.stdout and "first dt" in r.stdout and "run time" in r.stdout, "check prints counts, dt, run time")
+
+# --- a good run
+out = os.path.join(WORK, "out_good")
+r = run(["run", os.path.join(WORK, "good.yaml"), "--out", out, "--threads", "2"])
+check(r.returncode == 0, f"good run exits 0 ({r.stderr[-300:]})")
+for f in ["fluid.pvd", "walls.pvd", "gauges.csv", "summary.json", "case.yaml"]:
+    check(os.path.isfile(os.path.join(out, f)), f"writes {f}")
+check(not any(n.endswith(".tmp") for _, _, fs in os.walk(out) for n in fs), "no temporary files left")
+summary = surge_post.read_summary(os.path.join(out, "summary.json"))
+check(summary["status"] == "completed" and summary["exit_code"] == 0, "summary status")
+frames = surge_post.read_pvd(os.path.join(out, "fluid.pvd"))
+check([round(t, 6) for t, _ in frames] == [0.0, 0.02, 0.04, 0.06], f"one frame per output time: {[t for t, _ in frames]}")
+first = surge_post.read_vtp(frames[0][1])
+n = summary["particles"]["fluid"]
+check(len(first["id"]) == n == 5 * 5 * 10, f"first frame holds every fluid particle ({len(first['id'])} vs {n})")
+# Values: the fluid starts on the (i + 1/2) dp lattice in hydrostatic balance (Tait).
+pos = first["position"]
+lattice = np.abs((pos / 0.02 - 0.5) - np.round(pos / 0.02 - 0.5)).max()
+check(lattice < 1e-6, f"positions on the lattice (max deviation {lattice:.2e} dp)")
+c0 = 20 * np.sqrt(9.81 * 0.2)
+B = c0 ** 2 * 1000 / 7
+rho_expected = 1000 * (1 + 1000 * 9.81 * (0.2 - pos[:, 2]) / B) ** (1 / 7)
+check(np.abs(first["density"] - rho_expected).max() < 0.01, "initial density is hydrostatic (Tait)")
+check(np.abs(first["pressure"] - B * ((first["density"] / 1000) ** 7 - 1)).max() < 1.0, "pressure = Tait(density)")
+check(len(np.unique(first["id"])) == n and (first["kind"] == 0).all(), "ids unique, kind fluid")
+check(np.abs(first["velocity"]).max() == 0.0, "fluid starts at rest")
+last = surge_post.read_vtp(frames[-1][1])
+check(last["position"][:, 2].min() > 0 and last["position"][:, 0].max() < 0.4, "last frame inside the tank")
+check(np.abs(last["velocity"]).max() > 0.1, "the column is collapsing")
+walls = surge_post.read_vtp(surge_post.read_pvd(os.path.join(out, "walls.pvd"))[0][1])
+check(len(walls["id"]) == summary["particles"]["wall"] and (walls["kind"] == 1).all(), "walls file")
+names, g = surge_post.read_gauges(os.path.join(out, "gauges.csv"))
+check(names == ["time", "H1", "P1"], f"gauge columns {names}")
+check(len(g) == 7 and abs(g[0, 1] - 0.2) < 0.02, f"gauge rows and initial height ({g[0, 1] if len(g) else None})")
+check(abs(g[0, 2] - 1000 * 9.81 * 0.17) < 0.1 * 1000 * 9.81 * 0.17, f"initial pressure near rho g (H - z) ({g[0, 2]})")
+r = run(["check", os.path.join(out, "case.yaml")])
+check(r.returncode == 0, "case.yaml as written is a valid case")
+
+# --- a diverging run: CFL far above its limit
+out_bad = os.path.join(WORK, "out_unstable")
+r = run(["run", os.path.join(WORK, "good.yaml"), "--out", out_bad, "--set", "sph.cfl=8", "--set", "time.end=0.5",
+         "--set", "time.output_every=0.005"], timeout=300)
+check(r.returncode == 3, f"unstable run exits 3 (got {r.returncode}; {r.stderr[-300:]})")
+check("diverged" in r.stderr, "message says it diverged")
+s = surge_post.read_summary(os.path.join(out_bad, "summary.json"))
+check(s["status"] == "diverged" and s["exit_code"] == 3, "summary records the divergence")
+good_frames = surge_post.read_pvd(os.path.join(out_bad, "fluid.pvd"))
+ok = True
+for t, f in good_frames:
+    d = surge_post.read_vtp(f)
+    ok = ok and np.isfinite(d["position"]).all() and np.isfinite(d["density"]).all() and len(d["id"]) > 0
+check(ok and len(good_frames) >= 1, f"the {len(good_frames)} earlier outputs are intact and finite")
+
+# --- Ctrl-C stops cleanly after writing what it has
+out_int = os.path.join(WORK, "out_interrupted")
+p = subprocess.Popen([SURGE, "run", os.path.join(WORK, "good.yaml"), "--out", out_int, "--set", "time.end=100", "--set", "dp=0.01"],
+                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+deadline = time.time() + 60
+while time.time() < deadline and not os.path.exists(os.path.join(out_int, "summary.json")):
+    time.sleep(0.2)
+time.sleep(1.0)
+p.send_signal(signal.SIGINT)
+_, err = p.communicate(timeout=120)
+check(p.returncode == 130, f"interrupted run exits 130 (got {p.returncode})")
+s = surge_post.read_summary(os.path.join(out_int, "summary.json"))
+check(s["status"] == "interrupted", "summary says interrupted")
+fr = surge_post.read_pvd(os.path.join(out_int, "fluid.pvd"))
+check(len(fr) >= 2 and len(surge_post.read_vtp(fr[-1][1])["id"]) > 0, "final state written on interrupt")
+
+print(f"{len(failures)} failures")
+sys.exit(1 if failures else 0)
