@@ -4,11 +4,11 @@
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/particles/particle_store.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <random>
 
 using namespace surge;
@@ -26,8 +26,8 @@ int main(int argc, char** argv) {
     for (int j = 0; j < side; ++j)
       for (int i = 0; i < side; ++i)
         h.push({dp * (static_cast<Real>(i) + 0.5f + jit(rng)), dp * (static_cast<Real>(j) + 0.5f + jit(rng)),
-                dp * (static_cast<Real>(k) + 0.5f + jit(rng))}, Vec3{}, 1000, Kind::Fluid,
-               static_cast<std::uint32_t>(h.size()));
+                dp * (static_cast<Real>(k) + 0.5f + jit(rng))},
+               Vec3{}, 1000, Kind::Fluid, static_cast<std::uint32_t>(h.size()));
   std::shuffle(h.pos.begin(), h.pos.end(), rng);
   particles::ParticleStore store;
   store.upload(h);
@@ -43,11 +43,12 @@ int main(int argc, char** argv) {
   auto v = store.view();
   const auto g = grid.view(v.pos);
   Real* out = v.vsig;
-  par::parallel_for(v.n, SURGE_LAMBDA(int i) {
-    int count = 0;
-    neighbour::for_each_neighbour(g, v.pos[i], r * r, [&](int, const Vec3&, Real) { ++count; });
-    out[i] = static_cast<Real>(count);
-  });
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        int count = 0;
+        neighbour::for_each_neighbour(g, v.pos[i], r * r, [&](int, const Vec3&, Real) { ++count; });
+        out[i] = static_cast<Real>(count);
+      });
   const auto t3 = std::chrono::steady_clock::now();
   double pairs = 0;
   for (int i = 0; i < v.n; ++i) pairs += static_cast<double>(out[i]);

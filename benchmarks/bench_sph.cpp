@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
               c.name.c_str(), surge::par::threads(), steps, n_fluid, n_all,
               static_cast<double>(n_fluid) * static_cast<double>(steps) / wall,
               static_cast<double>(n_all) * static_cast<double>(steps) / wall, solver->time_sort / solver->time_total,
-              static_cast<double>(solver->bytes()) / static_cast<double>(n_all), rss / static_cast<double>(n_all), wall);
+              static_cast<double>(solver->bytes()) / static_cast<double>(n_all), rss / static_cast<double>(n_all),
+              wall);
   return 0;
 }

@@ -21,9 +21,7 @@ void expect_error(const std::string& text, int line, const std::string& key, con
   } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_EQ(e.key(), key) << msg;
-    if (line > 0) {
-      EXPECT_EQ(e.line(), line) << msg;
-    }
+    if (line > 0) { EXPECT_EQ(e.line(), line) << msg; }
     EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
     EXPECT_EQ(msg.rfind("bad.yaml", 0), 0U) << msg;
   }
@@ -64,7 +62,9 @@ TEST(CaseReader, UnknownKeyIsATypo) {
   expect_error(test::tank_case(0.01) + "sph: {h_over_dp: 1.2, alpah: 0.01}\n", 7, "sph.alpah", "did you mean 'alpha'");
 }
 
-TEST(CaseReader, WrongType) { expect_error(test::tank_case(0.01) + "sph: {cfl: fast}\n", 7, "sph.cfl", "expected a number"); }
+TEST(CaseReader, WrongType) {
+  expect_error(test::tank_case(0.01) + "sph: {cfl: fast}\n", 7, "sph.cfl", "expected a number");
+}
 
 TEST(CaseReader, NonPositiveSpacing) {
   std::string t = test::tank_case(0.01);
@@ -75,7 +75,6 @@ TEST(CaseReader, NonPositiveSpacing) {
 TEST(CaseReader, NonPositiveSpacingFromCommandLine) {
   expect_error(test::tank_case(0.01), 0, "dp", "--set dp", {"dp=0"});
 }
-
 
 TEST(CaseReader, WaterOutsideTheTank) {
   const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
@@ -95,9 +94,11 @@ TEST(CaseReader, MissingMesh) {
   expect_error(t, 5, "walls.0.mesh", "not found");
 }
 
-TEST(CaseReader, MissingRequiredKey) { expect_error("name: x\ndomain: {min: [0,0,0], max: [1,1,1]}\n", 1, "dp", "required"); }
+TEST(CaseReader, MissingRequiredKey) {
+  expect_error("name: x\ndomain: {min: [0,0,0], max: [1,1,1]}\n", 1, "dp", "required");
+}
 
 TEST(CaseReader, UnknownGaugeType) {
-  expect_error(test::tank_case(0.01) + "gauges:\n  - {name: G, type: speed, at: [0.1, 0.05, 0.05]}\n", 8, "gauges.0.type",
-               "unknown gauge type");
+  expect_error(test::tank_case(0.01) + "gauges:\n  - {name: G, type: speed, at: [0.1, 0.05, 0.05]}\n", 8,
+               "gauges.0.type", "unknown gauge type");
 }

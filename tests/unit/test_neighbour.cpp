@@ -39,7 +39,8 @@ Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Ve
   Pairs out(pos.size());
   // Host-side walk over the sorted arrays (the CPU build's buffers are host memory).
   for (int i = 0; i < v.n; ++i)
-    neighbour::for_each_neighbour(g, v.pos[i], r * r, [&](int j, const Vec3&, Real) { out[v.id[i]].push_back(v.id[j]); });
+    neighbour::for_each_neighbour(g, v.pos[i], r * r,
+                                  [&](int j, const Vec3&, Real) { out[v.id[i]].push_back(v.id[j]); });
   for (auto& l : out) std::sort(l.begin(), l.end());
   return out;
 }
@@ -52,9 +53,7 @@ void expect_same(const std::vector<Vec3>& pos, Real r, Vec3 lo, Vec3 hi) {
     EXPECT_EQ(a[i], b[i]) << "particle " << i;
     pairs += a[i].size();
   }
-  if (!pos.empty()) {
-    EXPECT_GT(pairs, pos.size());
-  } // the sets are not trivially self-only
+  if (!pos.empty()) { EXPECT_GT(pairs, pos.size()); } // the sets are not trivially self-only
 }
 
 } // namespace
@@ -90,11 +89,11 @@ TEST(Neighbour, BoundaryTouchingAndOutsideClampedCells) {
 }
 
 TEST(Neighbour, DegenerateSets) {
-  expect_same({}, 0.1f, {0, 0, 0}, {1, 1, 1});                       // empty domain
+  expect_same({}, 0.1f, {0, 0, 0}, {1, 1, 1}); // empty domain
   const Pairs one = grid_search({{0.5f, 0.5f, 0.5f}}, 0.1f, {0, 0, 0}, {1, 1, 1});
   ASSERT_EQ(one.size(), 1U);
-  EXPECT_EQ(one[0], std::vector<std::uint32_t>{0});                    // only itself
-  std::vector<Vec3> same_cell;                                        // all in one cell
+  EXPECT_EQ(one[0], std::vector<std::uint32_t>{0}); // only itself
+  std::vector<Vec3> same_cell;                      // all in one cell
   for (int i = 0; i < 50; ++i) same_cell.push_back({0.5f + 0.001f * f(i), 0.5f, 0.5f});
   expect_same(same_cell, 0.2f, {0, 0, 0}, {1, 1, 1});
 }
@@ -113,7 +112,8 @@ TEST(Neighbour, SameResultOnOneAndTwoThreads) {
 
 TEST(Neighbour, RemovedParticlesAreDropped) {
   particles::HostParticles h;
-  for (int i = 0; i < 10; ++i) h.push({0.1f * f(i), 0, 0}, Vec3{}, 1000, i % 3 == 0 ? Kind::Removed : Kind::Fluid, static_cast<std::uint32_t>(i));
+  for (int i = 0; i < 10; ++i)
+    h.push({0.1f * f(i), 0, 0}, Vec3{}, 1000, i % 3 == 0 ? Kind::Removed : Kind::Fluid, static_cast<std::uint32_t>(i));
   particles::ParticleStore store;
   store.upload(h);
   neighbour::UniformGrid grid;

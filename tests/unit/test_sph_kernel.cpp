@@ -7,7 +7,9 @@ using namespace surge;
 
 namespace {
 // Lattice quadrature of int W dV and int grad W dV, the lattice shifted by `offset` dp in x.
-struct Moments { double sum, gx, gy, gz; };
+struct Moments {
+  double sum, gx, gy, gz;
+};
 Moments lattice_moments(double hr, double offset) {
   const double dp = 0.01;
   const sph::WendlandC2 k(static_cast<Real>(hr * dp));

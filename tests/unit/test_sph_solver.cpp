@@ -44,8 +44,12 @@ TEST(WcsphSolver, MomentumConservedWithoutGravityOrWalls) {
   sph::WcsphSolver s(c, init);
   auto momentum = [&] {
     const auto h = by_id(s);
-    Vec3d p{}; double scale = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) { p += Vec3d(h.vel[i]); scale += norm(Vec3d(h.vel[i])); }
+    Vec3d p{};
+    double scale = 0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      p += Vec3d(h.vel[i]);
+      scale += norm(Vec3d(h.vel[i]));
+    }
     return std::make_pair(p, scale);
   };
   const auto [p0, scale] = momentum();
@@ -89,7 +93,10 @@ TEST(WcsphSolver, FarFromOriginGivesSameNeighboursAndValues) {
   const auto ia = sph::build_initial_state(near_c), ib = sph::build_initial_state(far_c);
   sph::WcsphSolver a(near_c, ia), b(far_c, ib);
   sph::Gauges ga(near_c, ia), gb(far_c, ib);
-  for (int k = 0; k < 40; ++k) { a.step(1.0); b.step(1.0); }
+  for (int k = 0; k < 40; ++k) {
+    a.step(1.0);
+    b.step(1.0);
+  }
   // Neighbour sets by id.
   auto neighbours = [](sph::WcsphSolver& s) {
     s.refresh();
@@ -135,12 +142,13 @@ TEST(WcsphSolver, HydrostaticTankSettles) {
   double t = 0, ke_first = 0, ke_second = 0;
   while (t < 0.6) {
     t += s.step(1.0).dt;
-    if (s.step_count() % 50 == 0) (t < 0.3 ? ke_first : ke_second) = std::max(t < 0.3 ? ke_first : ke_second, kinetic());
+    if (s.step_count() % 50 == 0)
+      (t < 0.3 ? ke_first : ke_second) = std::max(t < 0.3 ? ke_first : ke_second, kinetic());
   }
   const auto v = g.sample(s);
   const double expected = 1000 * 9.81 * (H - 0.02);
   EXPECT_NEAR(v[0], expected, 0.05 * expected);
-  EXPECT_NEAR(v[1], H, dp);  // the free surface stays where it was, within dp
+  EXPECT_NEAR(v[1], H, dp); // the free surface stays where it was, within dp
   EXPECT_LT(ke_second, ke_first);
   EXPECT_EQ(s.size(), static_cast<int>(init.n_fluid + init.n_wall));
 }

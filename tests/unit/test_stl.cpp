@@ -61,11 +61,16 @@ TEST(Stl, ErrorsNameTheLine) {
 TEST(Stl, ClosestPointRegions) {
   const Triangle t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   const Vec3d face = closest_point(t, {0.2, 0.2, 1});
-  EXPECT_NEAR(face.x, 0.2, 1e-15); EXPECT_NEAR(face.y, 0.2, 1e-15); EXPECT_NEAR(face.z, 0, 1e-15);
+  EXPECT_NEAR(face.x, 0.2, 1e-15);
+  EXPECT_NEAR(face.y, 0.2, 1e-15);
+  EXPECT_NEAR(face.z, 0, 1e-15);
   const Vec3d edge = closest_point(t, {0.5, -1, 0.3});
-  EXPECT_NEAR(edge.x, 0.5, 1e-15); EXPECT_NEAR(edge.y, 0, 1e-15);
+  EXPECT_NEAR(edge.x, 0.5, 1e-15);
+  EXPECT_NEAR(edge.y, 0, 1e-15);
   const Vec3d hyp = closest_point(t, {1, 1, 0});
-  EXPECT_NEAR(hyp.x, 0.5, 1e-15); EXPECT_NEAR(hyp.y, 0.5, 1e-15);
+  EXPECT_NEAR(hyp.x, 0.5, 1e-15);
+  EXPECT_NEAR(hyp.y, 0.5, 1e-15);
   const Vec3d vertex = closest_point(t, {-1, -1, 0});
-  EXPECT_NEAR(vertex.x, 0, 1e-15); EXPECT_NEAR(vertex.y, 0, 1e-15);
+  EXPECT_NEAR(vertex.x, 0, 1e-15);
+  EXPECT_NEAR(vertex.y, 0, 1e-15);
 }

@@ -45,8 +45,14 @@ int fail_usage(const std::string& msg) {
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) return fail_usage("no command given");
-  if (args[0] == "--help" || args[0] == "-h") { std::fputs(usage, stdout); return 0; }
-  if (args[0] == "--version") { std::printf("surge %s (%s backend)\n", surge::version_string, surge::par::backend_name()); return 0; }
+  if (args[0] == "--help" || args[0] == "-h") {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("surge %s (%s backend)\n", surge::version_string, surge::par::backend_name());
+    return 0;
+  }
   const std::string cmd = args[0];
   if (cmd != "run" && cmd != "check") return fail_usage("unknown command '" + cmd + "'");
   std::string case_path, out_dir;

@@ -13,17 +13,17 @@ namespace surge {
 struct Box {
   Vec3d min{}, max{};
   [[nodiscard]] bool contains(const Vec3d& p, double tol = 0) const {
-    return p.x >= min.x - tol && p.x <= max.x + tol && p.y >= min.y - tol && p.y <= max.y + tol &&
-           p.z >= min.z - tol && p.z <= max.z + tol;
+    return p.x >= min.x - tol && p.x <= max.x + tol && p.y >= min.y - tol && p.y <= max.y + tol && p.z >= min.z - tol &&
+           p.z <= max.z + tol;
   }
 };
 
 struct TimeConfig {
   double end = 1.0;
   double output_every = 0.02;
-  double gauge_every = 0.0;   // 0: every output_every / 10
-  double dt_min = 0.0;        // 0: 1e-3 of the first time step; below this the run is stopped
-  long max_steps = 0;         // > 0: stop after this many steps (benchmarks)
+  double gauge_every = 0.0; // 0: every output_every / 10
+  double dt_min = 0.0;      // 0: 1e-3 of the first time step; below this the run is stopped
+  long max_steps = 0;       // > 0: stop after this many steps (benchmarks)
 };
 
 struct SphConfig {
@@ -33,14 +33,14 @@ struct SphConfig {
   double eta = 20.0;
   double cfl = 0.2;
   double rho0 = 1000.0;
-  double hmax = 0.0;          // 0: from the fluid regions (highest water top - lowest water bottom)
-  double c0 = 0.0;            // 0: c0 = eta sqrt(g hmax); > 0 sets the speed of sound directly
-  std::string integrator = "verlet";  // verlet | symplectic
+  double hmax = 0.0;                 // 0: from the fluid regions (highest water top - lowest water bottom)
+  double c0 = 0.0;                   // 0: c0 = eta sqrt(g hmax); > 0 sets the speed of sound directly
+  std::string integrator = "verlet"; // verlet | symplectic
   int euler_every = 40;
-  double rho_min = 0.7;       // removal bounds, as fractions of rho0
+  double rho_min = 0.7; // removal bounds, as fractions of rho0
   double rho_max = 1.3;
-  double max_removed_share = 0.05;  // stop the run beyond this share of fluid particles removed
-  bool hydrostatic_init = true;     // start fluid density from the hydrostatic pressure
+  double max_removed_share = 0.05; // stop the run beyond this share of fluid particles removed
+  bool hydrostatic_init = true;    // start fluid density from the hydrostatic pressure
 };
 
 struct FluidRegion {
@@ -52,13 +52,13 @@ struct FluidRegion {
 enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };
 
 struct WallSpec {
-  std::string name;           // for force gauges
+  std::string name; // for force gauges
   bool is_mesh = false;
-  Box box;                    // box walls: the tank interior, or the solid obstacle
-  bool solid = false;         // box: particles fill the inside instead of surrounding it
-  std::vector<Face> open;     // box tank: faces left without wall
-  std::string mesh;           // as written in the case file
-  std::string mesh_path;      // resolved against the case file's folder
+  Box box;                // box walls: the tank interior, or the solid obstacle
+  bool solid = false;     // box: particles fill the inside instead of surrounding it
+  std::vector<Face> open; // box tank: faces left without wall
+  std::string mesh;       // as written in the case file
+  std::string mesh_path;  // resolved against the case file's folder
   int line = 0;
 };
 
@@ -67,16 +67,16 @@ enum class GaugeType { Height, Pressure, Velocity, Force };
 struct GaugeSpec {
   std::string name;
   GaugeType type = GaugeType::Height;
-  double x = 0, y = 0;        // height gauges
-  Vec3d at{};                 // pressure / velocity gauges
+  double x = 0, y = 0;         // height gauges
+  Vec3d at{};                  // pressure / velocity gauges
   std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag
-  std::string wall;           // force gauges: name of the wall
+  std::string wall;            // force gauges: name of the wall
   int line = 0;
 };
 
 struct Case {
   std::string name = "case";
-  std::string source;         // file it came from
+  std::string source; // file it came from
   double dp = 0.0;
   TimeConfig time;
   Vec3d gravity{0, 0, -9.81};
@@ -90,7 +90,10 @@ struct Case {
   [[nodiscard]] double water_depth() const {
     if (sph.hmax > 0) return sph.hmax;
     double lo = 1e300, hi = -1e300;
-    for (const auto& f : fluid) { lo = std::min(lo, f.box.min.z); hi = std::max(hi, f.box.max.z); }
+    for (const auto& f : fluid) {
+      lo = std::min(lo, f.box.min.z);
+      hi = std::max(hi, f.box.max.z);
+    }
     return fluid.empty() ? 0.0 : hi - lo;
   }
   [[nodiscard]] double g() const { return norm(gravity); }

@@ -15,8 +15,7 @@ public:
   [[nodiscard]] const std::string& key() const { return key_; }
 
 private:
-  static std::string format(const std::string& file, int line, const std::string& key,
-                            const std::string& msg) {
+  static std::string format(const std::string& file, int line, const std::string& key, const std::string& msg) {
     std::string s;
     s.reserve(file.size() + key.size() + msg.size() + 16);
     s.append(file);

@@ -55,14 +55,18 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
   if (w.solid) {
     const double band = layers * dp;
     for (const auto& p : fill_box(b, dp)) {
-      const double d = std::min({p.x - b.min.x, b.max.x - p.x, p.y - b.min.y, b.max.y - p.y, p.z - b.min.z, b.max.z - p.z});
+      const double d =
+          std::min({p.x - b.min.x, b.max.x - p.x, p.y - b.min.y, b.max.y - p.y, p.z - b.min.z, b.max.z - p.z});
       if (d < band) pts.push_back(p);
     }
     return pts;
   }
   // Per axis: layers below, the interior (spacing stretched to fit exactly), layers above.
   // Each coordinate carries -1 (below), 0 (inside) or +1 (above).
-  struct C { double v; int side; };
+  struct C {
+    double v;
+    int side;
+  };
   auto axis = [&](double lo, double hi) {
     std::vector<C> v;
     for (int k = layers - 1; k >= 0; --k) v.push_back({lo - (k + 0.5) * dp, -1});
@@ -91,7 +95,10 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (const auto& t : m.tris)
     for (const Vec3d& v : {t.a, t.b, t.c})
-      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], v[k]); hi[k] = std::max(hi[k], v[k]); }
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], v[k]);
+        hi[k] = std::max(hi[k], v[k]);
+      }
   const double band = layers * dp;
   long i0[3], i1[3];
   for (int k = 0; k < 3; ++k) {

@@ -82,9 +82,12 @@ Mesh parse_stl(const std::string& s, const std::string& name) {
     std::memcpy(&n, s.data() + 80, 4);
     binary = s.size() == 84 + 50 * static_cast<std::size_t>(n);
   }
-  if (binary) m = parse_binary(s, name);
-  else if (s.compare(0, 5, "solid") == 0) m = parse_ascii(s, name);
-  else throw InputError(name, 0, "", "not an STL file (neither ascii 'solid ...' nor a binary STL of consistent size)");
+  if (binary)
+    m = parse_binary(s, name);
+  else if (s.compare(0, 5, "solid") == 0)
+    m = parse_ascii(s, name);
+  else
+    throw InputError(name, 0, "", "not an STL file (neither ascii 'solid ...' nor a binary STL of consistent size)");
   if (m.tris.empty()) throw InputError(name, 0, "", "the mesh has no triangles");
   for (std::size_t i = 0; i < m.tris.size(); ++i)
     if (norm(cross(m.tris[i].b - m.tris[i].a, m.tris[i].c - m.tris[i].a)) <= 0)

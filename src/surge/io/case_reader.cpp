@@ -43,10 +43,14 @@ public:
       std::size_t best_d = 3;
       for (const char* a : allowed) {
         const std::size_t d = distance(k, a);
-        if (d < best_d) { best_d = d; best = a; }
+        if (d < best_d) {
+          best_d = d;
+          best = a;
+        }
       }
       std::string msg = "unknown key";
-      if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+      if (!best.empty())
+        msg += " (did you mean '" + best + "'?)";
       else {
         msg += "; allowed here:";
         for (const char* a : allowed) msg += std::string(" ") + a;
@@ -91,11 +95,16 @@ public:
   [[nodiscard]] const std::string& file() const { return file_; }
 
 private:
-  template <class T> static const char* type_name() {
-    if constexpr (std::is_same_v<T, bool>) return "true or false";
-    else if constexpr (std::is_integral_v<T>) return "an integer";
-    else if constexpr (std::is_floating_point_v<T>) return "a number";
-    else return "a string";
+  template <class T>
+  static const char* type_name() {
+    if constexpr (std::is_same_v<T, bool>)
+      return "true or false";
+    else if constexpr (std::is_integral_v<T>)
+      return "an integer";
+    else if constexpr (std::is_floating_point_v<T>)
+      return "a number";
+    else
+      return "a string";
   }
   static std::size_t distance(const std::string& a, const std::string& b) {
     std::vector<std::size_t> d(b.size() + 1);
@@ -116,7 +125,7 @@ private:
 };
 
 // Applies "a.b.c=value" to the tree; list elements are addressed by index ("fluid.0.box.min").
-void apply_override(YAML::Node root, const std::string& assignment, Reader& r) {
+void apply_override(YAML::Node& root, const std::string& assignment, Reader& r) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set", 0, assignment, "expected KEY=VALUE, like --set dp=0.02");
@@ -135,9 +144,9 @@ void apply_override(YAML::Node root, const std::string& assignment, Reader& r) {
     YAML::Node cur = chain.back();
     if (cur.IsSequence()) {
       std::size_t idx = 0;
-      try { idx = std::stoul(parts[i]); } catch (...) {
-        throw InputError("--set", 0, key, "'" + parts[i] + "' should be a list index");
-      }
+      try {
+        idx = std::stoul(parts[i]);
+      } catch (...) { throw InputError("--set", 0, key, "'" + parts[i] + "' should be a list index"); }
       if (idx >= cur.size()) throw InputError("--set", 0, key, "list index " + parts[i] + " out of range");
       chain.push_back(cur[idx]);
     } else {
@@ -147,9 +156,9 @@ void apply_override(YAML::Node root, const std::string& assignment, Reader& r) {
   YAML::Node parent = chain.back();
   if (parent.IsSequence()) {
     std::size_t idx = 0;
-    try { idx = std::stoul(parts.back()); } catch (...) {
-      throw InputError("--set", 0, key, "'" + parts.back() + "' should be a list index");
-    }
+    try {
+      idx = std::stoul(parts.back());
+    } catch (...) { throw InputError("--set", 0, key, "'" + parts.back() + "' should be a list index"); }
     if (idx >= parent.size()) throw InputError("--set", 0, key, "list index out of range");
     parent[idx] = value;
   } else {
@@ -204,8 +213,9 @@ Case parse(const YAML::Node& root, Reader& r) {
   c.domain = parse_box(r, root["domain"], "domain");
 
   if (const auto s = root["sph"]; s.IsDefined()) {
-    r.check_keys(s, "sph", {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "euler_every",
-                            "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
+    r.check_keys(s, "sph",
+                 {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "euler_every",
+                  "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
     auto& p = c.sph;
     p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
     p.alpha = r.get(s, "sph", "alpha", p.alpha);
@@ -254,7 +264,8 @@ Case parse(const YAML::Node& root, Reader& r) {
       reg.velocity = r.get(f, path, "velocity", reg.velocity);
       reg.line = f.Mark().line + 1;
       if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
-        r.fail(f["box"], path + ".box", "fluid region lies (partly) outside the domain; enlarge domain or move the water");
+        r.fail(f["box"], path + ".box",
+               "fluid region lies (partly) outside the domain; enlarge domain or move the water");
       const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-3); };
       if (cells(0) < 1 || cells(1) < 1 || cells(2) < 1)
         r.fail(f["box"], path + ".box", "fluid region is thinner than dp and would hold no particle");
@@ -319,8 +330,7 @@ Case parse(const YAML::Node& root, Reader& r) {
         gs.type = GaugeType::Height;
         gs.x = r.require<double>(g, path, "x");
         gs.y = r.require<double>(g, path, "y");
-        if (!c.domain.contains({gs.x, gs.y, c.domain.min.z}))
-          r.fail(g, path, "height gauge lies outside the domain");
+        if (!c.domain.contains({gs.x, gs.y, c.domain.min.z})) r.fail(g, path, "height gauge lies outside the domain");
       } else if (type == "pressure" || type == "velocity") {
         gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
         gs.at = r.require<Vec3d>(g, path, "at");
@@ -343,8 +353,28 @@ Case parse(const YAML::Node& root, Reader& r) {
       c.gauges.push_back(gs);
     }
   }
-  if (c.fluid.empty() && c.walls.empty()) r.fail(root, "fluid", "the case has neither fluid nor walls: nothing to simulate");
-  if (!c.fluid.empty() && !(c.water_depth() > 0)) r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
+  {
+    // Refuse cases too large to build before allocating anything: fluid volume plus
+    // box-wall shells, in particles.
+    double n = 0;
+    for (const auto& f : c.fluid)
+      n += (f.box.max.x - f.box.min.x) * (f.box.max.y - f.box.min.y) * (f.box.max.z - f.box.min.z) /
+           (c.dp * c.dp * c.dp);
+    for (const auto& w : c.walls) {
+      if (w.is_mesh) continue;
+      const Vec3d e = w.box.max - w.box.min;
+      n += 2 * (e.x * e.y + e.y * e.z + e.x * e.z) * 3 * c.sph.h_over_dp / (c.dp * c.dp);
+    }
+    if (n > 1.5e9) {
+      std::ostringstream m;
+      m << "about " << n << " particles: more than surge can hold (1.5e9); increase dp";
+      r.fail(root["dp"], "dp", m.str());
+    }
+  }
+  if (c.fluid.empty() && c.walls.empty())
+    r.fail(root, "fluid", "the case has neither fluid nor walls: nothing to simulate");
+  if (!c.fluid.empty() && !(c.water_depth() > 0))
+    r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
   if (!c.fluid.empty() && !(c.sound_speed() > 0))
     r.fail(root["gravity"], "gravity", "with zero gravity the speed of sound must be given as sph.c0");
   return c;
@@ -359,9 +389,7 @@ Case read_case_text(const std::string& text, const std::string& filename, const 
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(filename, e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw InputError(filename, 0, "", std::string("malformed YAML: ") + e.what());
-  }
+  } catch (const YAML::Exception& e) { throw InputError(filename, 0, "", std::string("malformed YAML: ") + e.what()); }
   if (!root.IsDefined() || root.IsNull()) throw InputError(filename, 0, "", "the case file is empty");
   for (const auto& o : overrides) apply_override(root, o, r);
   try {
@@ -408,7 +436,8 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "h_over_dp" << YAML::Value << s.h_over_dp << YAML::Key << "alpha" << YAML::Value << s.alpha;
   e << YAML::Key << "delta" << YAML::Value << s.delta << YAML::Key << "eta" << YAML::Value << s.eta;
   e << YAML::Key << "cfl" << YAML::Value << s.cfl << YAML::Key << "rho0" << YAML::Value << s.rho0;
-  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "c0" << YAML::Value << s.c0 << YAML::Key << "integrator" << YAML::Value << s.integrator;
+  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "c0" << YAML::Value << s.c0 << YAML::Key
+    << "integrator" << YAML::Value << s.integrator;
   e << YAML::Key << "euler_every" << YAML::Value << s.euler_every << YAML::Key << "rho_min" << YAML::Value << s.rho_min;
   e << YAML::Key << "rho_max" << YAML::Value << s.rho_max << YAML::Key << "max_removed_share" << YAML::Value
     << s.max_removed_share << YAML::Key << "hydrostatic_init" << YAML::Value << s.hydrostatic_init;
@@ -454,8 +483,8 @@ std::string to_yaml(const Case& c) {
       if (g.type == GaugeType::Velocity) e << YAML::Key << "component" << YAML::Value << g.component;
       break;
     case GaugeType::Force:
-      e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall
-        << YAML::Key << "component" << YAML::Value << g.component;
+      e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
+        << "component" << YAML::Value << g.component;
       break;
     }
     e << YAML::EndMap;

@@ -19,12 +19,18 @@ std::size_t append_block(std::string& blob, const std::vector<T>& data) {
   return offset;
 }
 
-template <class T> const char* vtk_type() {
-  if constexpr (std::is_same_v<T, double>) return "Float64";
-  else if constexpr (std::is_same_v<T, float>) return "Float32";
-  else if constexpr (std::is_same_v<T, std::uint8_t>) return "UInt8";
-  else if constexpr (std::is_same_v<T, std::uint32_t>) return "UInt32";
-  else return "Int64";
+template <class T>
+const char* vtk_type() {
+  if constexpr (std::is_same_v<T, double>)
+    return "Float64";
+  else if constexpr (std::is_same_v<T, float>)
+    return "Float32";
+  else if constexpr (std::is_same_v<T, std::uint8_t>)
+    return "UInt8";
+  else if constexpr (std::is_same_v<T, std::uint32_t>)
+    return "UInt32";
+  else
+    return "Int64";
 }
 
 } // namespace
@@ -41,7 +47,8 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
     if (!take) continue;
     const Vec3d p = origin + Vec3d(h.pos[i]);
     pos.insert(pos.end(), {p.x, p.y, p.z});
-    vel.insert(vel.end(), {static_cast<float>(h.vel[i].x), static_cast<float>(h.vel[i].y), static_cast<float>(h.vel[i].z)});
+    vel.insert(vel.end(),
+               {static_cast<float>(h.vel[i].x), static_cast<float>(h.vel[i].y), static_cast<float>(h.vel[i].z)});
     rho.push_back(static_cast<float>(h.rho[i]));
     press.push_back(static_cast<float>(h.press[i]));
     kind.push_back(h.kind[i]);
@@ -52,7 +59,8 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
   std::ostringstream x;
   x << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-    << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+    << "<PolyData>\n<Piece NumberOfPoints=\"" << n
+    << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
   auto array = [&](const char* name, const auto& data, int comps) {
     using T = typename std::decay_t<decltype(data)>::value_type;
     const std::size_t off = append_block(blob, data);
@@ -78,7 +86,8 @@ void PvdCollection::add(double time, const std::string& relative_file) {
   entries_.emplace_back(time, relative_file);
   std::ostringstream x;
   x.precision(10);
-  x << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n";
+  x << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+       "byte_order=\"LittleEndian\">\n<Collection>\n";
   for (const auto& [t, f] : entries_) x << "<DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << f << "\"/>\n";
   x << "</Collection>\n</VTKFile>\n";
   write_file_atomic(path_, x.str());

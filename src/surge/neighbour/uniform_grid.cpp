@@ -30,10 +30,11 @@ void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
   std::uint32_t* keys = keys_.data();
   const GridSpec s = spec_;
   const std::uint32_t sentinel = 2 * s.cells();
-  par::parallel_for(n, SURGE_LAMBDA(int i) {
-    const std::uint32_t c = cls ? cls[i] : 0U;
-    keys[i] = c >= 2 ? sentinel : 2 * s.key(pos[i]) + c;
-  });
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) {
+        const std::uint32_t c = cls ? cls[i] : 0U;
+        keys[i] = c >= 2 ? sentinel : 2 * s.key(pos[i]) + c;
+      });
   algo::iota(perm_.data(), n);
   algo::sort_by_key(keys, perm_.data(), n);
 }
@@ -49,14 +50,15 @@ int UniformGrid::build_cell_start(int n) {
   }
   // Every cell c gets the first index whose key is >= c; each entry is written once:
   // by the particle where the key jumps past it, or by the tail loop.
-  par::parallel_for(n, SURGE_LAMBDA(int i) {
-    const std::uint32_t prev = i == 0 ? 0U : keys[i - 1] + 1U;
-    const std::uint32_t k = keys[i] < ncell ? keys[i] : ncell;
-    for (std::uint32_t c = prev; c <= k; ++c) start[c] = static_cast<std::uint32_t>(i);
-    if (i == n - 1) {
-      for (std::uint32_t c = k + 1; c <= ncell; ++c) start[c] = static_cast<std::uint32_t>(n);
-    }
-  });
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) {
+        const std::uint32_t prev = i == 0 ? 0U : keys[i - 1] + 1U;
+        const std::uint32_t k = keys[i] < ncell ? keys[i] : ncell;
+        for (std::uint32_t c = prev; c <= k; ++c) start[c] = static_cast<std::uint32_t>(i);
+        if (i == n - 1) {
+          for (std::uint32_t c = k + 1; c <= ncell; ++c) start[c] = static_cast<std::uint32_t>(n);
+        }
+      });
   std::vector<std::uint32_t> live(1);
 #if defined(SURGE_BACKEND_CUDA)
   par::check_cuda(cudaMemcpy(live.data(), start + ncell, sizeof(std::uint32_t), cudaMemcpyDeviceToHost), "cell_start");

@@ -77,8 +77,8 @@ template <class T, class F, class Op>
 T parallel_reduce(int n, T init, F f, Op op) {
   if (n <= 0) return init;
 #if defined(SURGE_BACKEND_CUDA)
-  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<int>(0),
-                                  thrust::counting_iterator<int>(n), f, init, op);
+  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<int>(0), thrust::counting_iterator<int>(n),
+                                  f, init, op);
 #else
   T result = init;
 #pragma omp parallel
@@ -94,13 +94,22 @@ T parallel_reduce(int n, T init, F f, Op op) {
 }
 
 struct Min {
-  template <class T> SURGE_HD T operator()(T a, T b) const { return b < a ? b : a; }
+  template <class T>
+  SURGE_HD T operator()(T a, T b) const {
+    return b < a ? b : a;
+  }
 };
 struct Max {
-  template <class T> SURGE_HD T operator()(T a, T b) const { return a < b ? b : a; }
+  template <class T>
+  SURGE_HD T operator()(T a, T b) const {
+    return a < b ? b : a;
+  }
 };
 struct Sum {
-  template <class T> SURGE_HD T operator()(T a, T b) const { return a + b; }
+  template <class T>
+  SURGE_HD T operator()(T a, T b) const {
+    return a + b;
+  }
 };
 
 // Memory in the execution space: device memory under CUDA, host memory on the
@@ -112,9 +121,19 @@ public:
   explicit Buffer(std::size_t n) { resize(n); }
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;
-  Buffer(Buffer&& o) noexcept : ptr_(o.ptr_), size_(o.size_), cap_(o.cap_) { o.ptr_ = nullptr; o.size_ = o.cap_ = 0; }
+  Buffer(Buffer&& o) noexcept : ptr_(o.ptr_), size_(o.size_), cap_(o.cap_) {
+    o.ptr_ = nullptr;
+    o.size_ = o.cap_ = 0;
+  }
   Buffer& operator=(Buffer&& o) noexcept {
-    if (this != &o) { release(); ptr_ = o.ptr_; size_ = o.size_; cap_ = o.cap_; o.ptr_ = nullptr; o.size_ = o.cap_ = 0; }
+    if (this != &o) {
+      release();
+      ptr_ = o.ptr_;
+      size_ = o.size_;
+      cap_ = o.cap_;
+      o.ptr_ = nullptr;
+      o.size_ = o.cap_ = 0;
+    }
     return *this;
   }
   ~Buffer() { release(); }
@@ -126,20 +145,26 @@ public:
 #if defined(SURGE_BACKEND_CUDA)
       check_cuda(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), "cudaMalloc");
 #else
-      ptr_ = static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64}));
+      ptr_ = static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64}));
 #endif
       cap_ = n;
     }
     size_ = n;
   }
   // Shrinks the logical size, keeping contents.
-  void truncate(std::size_t n) { if (n < size_) size_ = n; }
+  void truncate(std::size_t n) {
+    if (n < size_) size_ = n;
+  }
 
   [[nodiscard]] T* data() { return ptr_; }
   [[nodiscard]] const T* data() const { return ptr_; }
   [[nodiscard]] std::size_t size() const { return size_; }
   [[nodiscard]] std::size_t bytes() const { return cap_ * sizeof(T); }
-  void swap(Buffer& o) noexcept { std::swap(ptr_, o.ptr_); std::swap(size_, o.size_); std::swap(cap_, o.cap_); }
+  void swap(Buffer& o) noexcept {
+    std::swap(ptr_, o.ptr_);
+    std::swap(size_, o.size_);
+    std::swap(cap_, o.cap_);
+  }
 
 private:
   void release() {
@@ -147,7 +172,7 @@ private:
 #if defined(SURGE_BACKEND_CUDA)
     cudaFree(ptr_);
 #else
-    ::operator delete(ptr_, std::align_val_t{64});
+    ::operator delete (ptr_, std::align_val_t{64});
 #endif
     ptr_ = nullptr;
     cap_ = size_ = 0;
@@ -187,7 +212,8 @@ std::vector<T> download(const Buffer<T>& src) {
 template <class T>
 void fill(Buffer<T>& b, T value) {
   T* p = b.data();
-  parallel_for(static_cast<int>(b.size()), SURGE_LAMBDA(int i) { p[i] = value; });
+  parallel_for(
+      static_cast<int>(b.size()), SURGE_LAMBDA(int i) { p[i] = value; });
 }
 
 } // namespace surge::par

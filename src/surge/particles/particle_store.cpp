@@ -34,9 +34,9 @@ void ParticleStore::download(HostParticles& h) const {
 }
 
 ParticleView ParticleStore::view() {
-  return {n_, pos_.data(), vel_.data(), vel_prev_.data(), pos_prev_.data(), acc_.data(),
-          rho_.data(), rho_prev_.data(), drho_.data(), press_.data(), vsig_.data(),
-          kind_.data(), id_.data()};
+  return {n_,           pos_.data(),  vel_.data(),      vel_prev_.data(), pos_prev_.data(),
+          acc_.data(),  rho_.data(),  rho_prev_.data(), drho_.data(),     press_.data(),
+          vsig_.data(), kind_.data(), id_.data()};
 }
 
 namespace detail {
@@ -46,7 +46,8 @@ void gather(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* per
   tmp.resize(static_cast<std::size_t>(n));
   T* out = tmp.data();
   const T* in = field.data();
-  par::parallel_for(n, SURGE_LAMBDA(int i) { out[i] = in[perm[i]]; });
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) { out[i] = in[perm[i]]; });
   field.swap(tmp);
 }
 } // namespace detail
@@ -62,7 +63,8 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   const std::uint8_t* kind = kind_.data();
   const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
   // Sort class: fluid first in each cell, then boundary particles; removed ones last.
-  par::parallel_for(n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
+  par::parallel_for(
+      n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
   grid.sort(pos_.data(), dead, n_);
   const std::uint32_t* perm = grid.permutation();
   reorder(pos_, tmp3_, perm);

@@ -17,8 +17,12 @@ struct HostParticles {
   std::vector<std::uint32_t> id;
   [[nodiscard]] std::size_t size() const { return pos.size(); }
   void push(const Vec3& p, const Vec3& v, Real density, Kind k, std::uint32_t ident) {
-    pos.push_back(p); vel.push_back(v); rho.push_back(density); press.push_back(0);
-    kind.push_back(static_cast<std::uint8_t>(k)); id.push_back(ident);
+    pos.push_back(p);
+    vel.push_back(v);
+    rho.push_back(density);
+    press.push_back(0);
+    kind.push_back(static_cast<std::uint8_t>(k));
+    id.push_back(ident);
   }
 };
 
@@ -34,7 +38,7 @@ struct ParticleView {
   Real* rho_prev = nullptr;
   Real* drho = nullptr;
   Real* press = nullptr;
-  Real* vsig = nullptr;     // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
+  Real* vsig = nullptr; // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
   std::uint8_t* kind = nullptr;
   std::uint32_t* id = nullptr;
 };
@@ -55,7 +59,8 @@ public:
   [[nodiscard]] std::size_t bytes() const;
 
 private:
-  template <class T> void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
+  template <class T>
+  void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
   int n_ = 0;
   par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
   par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;

@@ -54,16 +54,21 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const std
   std::string msg;
   for (char ch : message) {
     if (ch == '"' || ch == '\\') msg += '\\';
-    if (ch == '\n') { msg += "\\n"; continue; }
+    if (ch == '\n') {
+      msg += "\\n";
+      continue;
+    }
     msg += ch;
   }
   j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
     << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
     << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
-    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": 0, \"sphere\": 0, \"now\": " << n_now << "},\n"
+    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall
+    << ", \"body\": 0, \"sphere\": 0, \"now\": " << n_now << "},\n"
     << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
     << "  \"particle_steps_per_second\": " << (wall > 0 ? n_all * static_cast<double>(steps) / wall : 0.0) << ",\n"
-    << "  \"fluid_particle_steps_per_second\": " << (wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(steps) / wall : 0.0) << ",\n"
+    << "  \"fluid_particle_steps_per_second\": "
+    << (wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(steps) / wall : 0.0) << ",\n"
     << "  \"removed\": {\"total\": " << tot.removed() << ", \"left_domain\": " << tot.removed_domain
     << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite << "},\n"
     << "  \"peak_rss_bytes\": " << rss << ",\n  \"bytes_per_particle\": " << (n_all > 0 ? rss / n_all : 0.0) << "\n}\n";
@@ -104,15 +109,20 @@ int check(const Case& c) {
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
               c.sound_speed());
   std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
-  std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow accelerates)\n",
+  std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow "
+              "accelerates)\n",
               hms(steps * n / assumed_particle_steps_per_s).c_str(), assumed_particle_steps_per_s);
   int warnings = 0;
-  auto warn = [&](const std::string& w) { std::printf("warning     %s\n", w.c_str()); ++warnings; };
+  auto warn = [&](const std::string& w) {
+    std::printf("warning     %s\n", w.c_str());
+    ++warnings;
+  };
   if (c.sph.h_over_dp < 1.2)
     warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
   if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
   if (!c.fluid.empty() && c.dp > c.water_depth() / 25)
-    warn("dp is coarser than 1/25 of the water depth (" + std::to_string(c.water_depth()) + " m): the paper's guidance is dp <= depth/25");
+    warn("dp is coarser than 1/25 of the water depth (" + std::to_string(c.water_depth()) +
+         " m): the paper's guidance is dp <= depth/25");
   if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
   if (warnings == 0) std::printf("warnings    none\n");
   return 0;
@@ -142,8 +152,9 @@ int run(const Case& c, const RunOptions& opt) {
   std::size_t rows_written = 0;
   auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    io::write_file_atomic((out / "summary.json").string(),
-                          summary_json(c, init, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
+    io::write_file_atomic(
+        (out / "summary.json").string(),
+        summary_json(c, init, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
   };
   auto sample_gauges = [&] {
     auto v = gauges.sample(solver);
@@ -162,8 +173,11 @@ int run(const Case& c, const RunOptions& opt) {
     write_summary("running", 0, "");
     ++frame;
     if (since_output.removed() > 0 && !opt.quiet)
-      std::fprintf(stderr, "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density out of range, %ld non-finite)\n",
-                   opt.progress_tty ? "\n" : "", t, since_output.removed(), since_output.removed_domain, since_output.removed_density, since_output.non_finite);
+      std::fprintf(stderr,
+                   "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
+                   "out of range, %ld non-finite)\n",
+                   opt.progress_tty ? "\n" : "", t, since_output.removed(), since_output.removed_domain,
+                   since_output.removed_density, since_output.non_finite);
     since_output = {};
   };
 
@@ -194,8 +208,8 @@ int run(const Case& c, const RunOptions& opt) {
       failure = m.str();
     } else if (static_cast<double>(tot.removed()) > max_removed && init.n_fluid > 0) {
       std::ostringstream m;
-      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << tot.removed() << " of " << init.n_fluid
-        << " fluid particles removed (limit sph.max_removed_share = " << c.sph.max_removed_share << "; "
+      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << tot.removed() << " of "
+        << init.n_fluid << " fluid particles removed (limit sph.max_removed_share = " << c.sph.max_removed_share << "; "
         << tot.removed_domain << " left the domain, " << tot.removed_density << " density out of range)";
       failure = m.str();
     } else if (s.dt < dt_min && s.dt < dt_max * (1 - 1e-9)) {
@@ -220,8 +234,9 @@ int run(const Case& c, const RunOptions& opt) {
       const double el = std::chrono::duration<double>(now - loop0).count();
       const double sps = static_cast<double>(solver.step_count()) / el;
       const double eta_s = el * (c.time.end - t) / std::max(t, 1e-12);
-      std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %.1f steps/s  dt %.2e s  ETA %s%s", opt.progress_tty ? "\r" : "", t,
-                   c.time.end, 100.0 * t / c.time.end, sps, s.dt, hms(eta_s).c_str(), opt.progress_tty ? "   " : "\n");
+      std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %.1f steps/s  dt %.2e s  ETA %s%s",
+                   opt.progress_tty ? "\r" : "", t, c.time.end, 100.0 * t / c.time.end, sps, s.dt, hms(eta_s).c_str(),
+                   opt.progress_tty ? "   " : "\n");
     }
   }
   if (opt.progress_tty && !opt.quiet) std::fprintf(stderr, "\n");
@@ -234,13 +249,17 @@ int run(const Case& c, const RunOptions& opt) {
   }
   const bool interrupted = opt.stop && *opt.stop;
   if (rows.size() > rows_written || interrupted) write_output();
-  write_summary(interrupted ? "interrupted" : "completed", interrupted ? 130 : 0, interrupted ? "stopped by the user" : "");
+  write_summary(interrupted ? "interrupted" : "completed", interrupted ? 130 : 0,
+                interrupted ? "stopped by the user" : "");
   if (!opt.quiet) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     const double n = static_cast<double>(init.n_fluid + init.n_wall);
-    std::fprintf(stderr, "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid particles removed\n  output in %s\n",
-                 interrupted ? "interrupted" : "done", solver.step_count(), t, wall, n * static_cast<double>(solver.step_count()) / wall,
-                 init.n_fluid, init.n_wall, tot.removed(), out.string().c_str());
+    std::fprintf(stderr,
+                 "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid "
+                 "particles removed\n  output in %s\n",
+                 interrupted ? "interrupted" : "done", solver.step_count(), t, wall,
+                 n * static_cast<double>(solver.step_count()) / wall, init.n_fluid, init.n_wall, tot.removed(),
+                 out.string().c_str());
   }
   return interrupted ? 130 : 0;
 }

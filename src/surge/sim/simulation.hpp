@@ -9,10 +9,10 @@
 namespace surge::sim {
 
 struct RunOptions {
-  std::string out_dir;           // created only after the case is valid
-  volatile std::sig_atomic_t* stop = nullptr;  // set by Ctrl-C: stop cleanly
-  bool progress_tty = false;     // one updating line instead of periodic lines
-  double report_every_s = 10.0;  // plain progress lines every so many seconds
+  std::string out_dir;                        // created only after the case is valid
+  volatile std::sig_atomic_t* stop = nullptr; // set by Ctrl-C: stop cleanly
+  bool progress_tty = false;                  // one updating line instead of periodic lines
+  double report_every_s = 10.0;               // plain progress lines every so many seconds
   bool quiet = false;
 };
 

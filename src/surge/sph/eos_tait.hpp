@@ -8,7 +8,7 @@ namespace surge::sph {
 struct TaitEos {
   Real rho0 = 1000;
   Real c0 = 1;
-  Real b = 0;     // c0^2 rho0 / gamma, gamma = 7
+  Real b = 0; // c0^2 rho0 / gamma, gamma = 7
 
   SURGE_HD TaitEos() = default;
   SURGE_HD TaitEos(Real rho0_, Real c0_) : rho0(rho0_), c0(c0_), b(c0_ * c0_ * rho0_ / 7) {}
@@ -21,6 +21,5 @@ struct TaitEos {
   // Inverse, used to start a water column in hydrostatic balance.
   [[nodiscard]] SURGE_HD Real density(Real p) const { return rho0 * std::pow(1 + p / b, Real(1.0 / 7.0)); }
 };
-
 
 } // namespace surge::sph

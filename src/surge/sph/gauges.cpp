@@ -14,15 +14,17 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
     if (g.type == GaugeType::Height) {
       // Sample points up the vertical line, from the domain bottom to its top.
       const int n = static_cast<int>(std::ceil((c.domain.max.z - c.domain.min.z) / dz_)) + 1;
-      for (int k = 0; k < n; ++k)
-        points_host_.push_back(Vec3(Vec3d{g.x, g.y, c.domain.min.z + k * dz_} - o));
+      for (int k = 0; k < n; ++k) points_host_.push_back(Vec3(Vec3d{g.x, g.y, c.domain.min.z + k * dz_} - o));
       pr.n_samples = n;
     } else if (g.type == GaugeType::Pressure || g.type == GaugeType::Velocity) {
       points_host_.push_back(Vec3(g.at - o));
       pr.n_samples = 1;
     } else {
       for (std::size_t w = 0; w < c.walls.size(); ++w)
-        if (c.walls[w].name == g.wall) { pr.id0 = init.wall_ids[w].first; pr.id1 = init.wall_ids[w].second; }
+        if (c.walls[w].name == g.wall) {
+          pr.id0 = init.wall_ids[w].first;
+          pr.id1 = init.wall_ids[w].second;
+        }
     }
     probes_.push_back(pr);
   }
@@ -37,7 +39,8 @@ std::vector<double> Gauges::sample(WcsphSolver& solver) {
   const WcsphParams prm = solver.params();
   const Vec3* pts = points_.data();
   PointSums* out = sums_.data();
-  par::parallel_for(static_cast<int>(points_host_.size()), SURGE_LAMBDA(int k) { out[k] = fluid_sums(prm, g, p, pts[k]); });
+  par::parallel_for(
+      static_cast<int>(points_host_.size()), SURGE_LAMBDA(int k) { out[k] = fluid_sums(prm, g, p, pts[k]); });
   std::vector<PointSums> sums;
   par::download(sums, sums_, sums_.size());
 
@@ -68,7 +71,8 @@ std::vector<double> Gauges::sample(WcsphSolver& solver) {
       // Shepard normalisation; a point with too little fluid around it reads 0.
       const double w = s.vw;
       if (w > 0.1) {
-        if (spec.type == GaugeType::Pressure) v = s.vwp / w;
+        if (spec.type == GaugeType::Pressure)
+          v = s.vwp / w;
         else {
           const Vec3d vel = Vec3d(s.vwv) * (1.0 / w);
           v = spec.component == "x" ? vel.x : spec.component == "y" ? vel.y : spec.component == "z" ? vel.z : norm(vel);
@@ -77,8 +81,9 @@ std::vector<double> Gauges::sample(WcsphSolver& solver) {
     } else {
       const std::uint32_t id0 = pr.id0, id1 = pr.id1;
       const Real m = prm.mass;
-      const Vec3 f = par::parallel_reduce(p.n, Vec3{}, SURGE_LAMBDA(int i) {
-        return (p.id[i] >= id0 && p.id[i] < id1) ? p.acc[i] * m : Vec3{}; }, par::Sum{});
+      const Vec3 f = par::parallel_reduce(
+          p.n, Vec3{}, SURGE_LAMBDA(int i) { return (p.id[i] >= id0 && p.id[i] < id1) ? p.acc[i] * m : Vec3{}; },
+          par::Sum{});
       const Vec3d fd(f);
       v = spec.component == "x" ? fd.x : spec.component == "y" ? fd.y : spec.component == "z" ? fd.z : norm(fd);
     }

@@ -38,7 +38,11 @@ public:
   std::vector<double> sample(WcsphSolver& solver);
 
 private:
-  struct Probe { GaugeSpec spec; int first_sample = 0, n_samples = 0; std::uint32_t id0 = 0, id1 = 0; };
+  struct Probe {
+    GaugeSpec spec;
+    int first_sample = 0, n_samples = 0;
+    std::uint32_t id0 = 0, id1 = 0;
+  };
   std::vector<Probe> probes_;
   std::vector<std::string> names_;
   std::vector<Vec3> points_host_;

@@ -8,12 +8,14 @@ namespace surge::sph {
 
 struct WendlandC2 {
   Real h = 1;
-  Real ad = 0;   // 21 / (16 pi h^3)
+  Real ad = 0; // 21 / (16 pi h^3)
   Real h2_inv = 1;
   Real h_inv = 1;
 
   SURGE_HD WendlandC2() = default;
-  SURGE_HD explicit WendlandC2(Real h_) : h(h_), ad(Real(21.0 / (16.0 * 3.14159265358979323846)) / (h_ * h_ * h_)), h2_inv(1 / (h_ * h_)), h_inv(1 / h_) {}
+  SURGE_HD explicit WendlandC2(Real h_)
+      : h(h_), ad(Real(21.0 / (16.0 * 3.14159265358979323846)) / (h_ * h_ * h_)), h2_inv(1 / (h_ * h_)), h_inv(1 / h_) {
+  }
 
   [[nodiscard]] SURGE_HD Real support() const { return 2 * h; }
   [[nodiscard]] SURGE_HD Real w(Real r) const {

@@ -19,14 +19,14 @@ namespace surge::sph {
 struct WcsphParams {
   WendlandC2 kernel;
   TaitEos eos;
-  Real mass = 1;      // rho0 dp^3, the same for every SPH particle
+  Real mass = 1;           // rho0 dp^3, the same for every SPH particle
   Real alpha = Real(0.01); // artificial viscosity
   Real delta = Real(0.1);  // density diffusion
   Vec3 gravity{};
 };
 
 struct Rates {
-  Vec3 acc{};   // without gravity for boundary particles (force per mass from the fluid)
+  Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;
   Real vsig = 0;
 };
@@ -64,8 +64,10 @@ struct Rates {
     if (vr < 0) coef -= prm.alpha * c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
     acc -= grad * (prm.mass * coef);
   };
-  if (fluid_i) neighbour::for_each_neighbour(g, xi, r2max, pair);
-  else neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
+  if (fluid_i)
+    neighbour::for_each_neighbour(g, xi, r2max, pair);
+  else
+    neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
   Rates out;
   out.drho = drho + prm.delta * h * c0 * diff;
   out.acc = fluid_i ? acc + prm.gravity : acc;

@@ -15,7 +15,8 @@ InitialState build_initial_state(const Case& c) {
   s.origin = c.domain.min;
   const int layers = geometry::wall_layers(c);
   std::vector<std::unique_ptr<geometry::Mesh>> meshes;
-  for (const auto& w : c.walls) meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
+  for (const auto& w : c.walls)
+    meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
 
   const double g = c.g(), rho0 = c.sph.rho0;
   const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
@@ -24,8 +25,12 @@ InitialState build_initial_state(const Case& c) {
   for (const auto& f : c.fluid) {
     for (const auto& p : geometry::fill_box(f.box, c.dp)) {
       bool blocked = false;
-      for (std::size_t w = 0; w < c.walls.size() && !blocked; ++w) blocked = geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp);
-      if (blocked) { ++s.fluid_dropped_by_walls; continue; }
+      for (std::size_t w = 0; w < c.walls.size() && !blocked; ++w)
+        blocked = geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp);
+      if (blocked) {
+        ++s.fluid_dropped_by_walls;
+        continue;
+      }
       // Hydrostatic start: pressure from the depth below this region's top.
       Real rho = static_cast<Real>(rho0);
       if (c.sph.hydrostatic_init) rho = eos.density(static_cast<Real>(rho0 * g * (f.box.max.z - p.z)));
@@ -35,14 +40,16 @@ InitialState build_initial_state(const Case& c) {
   }
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];
-    const auto pts = ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers) : geometry::box_wall(ws, c.dp, layers);
+    const auto pts =
+        ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers) : geometry::box_wall(ws, c.dp, layers);
     const std::uint32_t first = next_id;
     for (const auto& p : pts) s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();
   }
   if (c.fluid.size() > 0 && s.n_fluid == 0)
-    throw InputError(c.source, c.fluid.front().line, "fluid", "every fluid particle lies inside a wall; check the walls and the fluid boxes");
+    throw InputError(c.source, c.fluid.front().line, "fluid",
+                     "every fluid particle lies inside a wall; check the walls and the fluid boxes");
   if (s.particles.size() > 2'000'000'000ULL)
     throw InputError(c.source, 0, "dp", "more than 2e9 particles; increase dp");
   return s;
@@ -54,13 +61,15 @@ namespace detail {
 
 // EOS then per-particle rates (continuity, momentum, signal speed).
 void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-    const Rates r = wcsph_rates(prm, g, p, i);
-    p.acc[i] = r.acc;
-    p.drho[i] = r.drho;
-    p.vsig[i] = r.vsig;
-  });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        const Rates r = wcsph_rates(prm, g, p, i);
+        p.acc[i] = r.acc;
+        p.drho[i] = r.drho;
+        p.vsig[i] = r.vsig;
+      });
 }
 
 // min over fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL factor.
@@ -68,12 +77,16 @@ Real min_dt(const WcsphParams& prm, const particles::ParticleView& p) {
   const Real h = prm.kernel.h, c0 = prm.eos.c0;
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real inf = std::numeric_limits<Real>::max();
-  const Real dt = par::parallel_reduce(p.n, inf, SURGE_LAMBDA(int i) {
-    if (p.kind[i] != fluid) return inf;
-    const Real a = norm(p.acc[i]);
-    const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
-    const Real dtcv = h / (c0 + p.vsig[i]);
-    return dtf < dtcv ? dtf : dtcv; }, par::Min{});
+  const Real dt = par::parallel_reduce(
+      p.n, inf,
+      SURGE_LAMBDA(int i) {
+        if (p.kind[i] != fluid) return inf;
+        const Real a = norm(p.acc[i]);
+        const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
+        const Real dtcv = h / (c0 + p.vsig[i]);
+        return dtf < dtcv ? dtf : dtcv;
+      },
+      par::Min{});
   return dt == inf ? h / c0 : dt;
 }
 
@@ -81,77 +94,87 @@ Real min_dt(const WcsphParams& prm, const particles::ParticleView& p) {
 // as Removed. Returns counts packed as non-finite << 42 | density << 21 | domain.
 long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real rmin, Real rmax) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
-  return par::parallel_reduce(p.n, 0LL, SURGE_LAMBDA(int i) -> long long {
-    if (p.kind[i] != fluid) return 0;
-    const Vec3 x = p.pos[i];
-    const Real rho = p.rho[i];
-    const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
-                        std::isfinite(p.vel[i].x) && std::isfinite(p.vel[i].y) && std::isfinite(p.vel[i].z);
-    long long code = 0;
-    if (!finite) code = 1LL << 42;
-    else if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) code = 1;
-    else if (rho < rmin || rho > rmax) code = 1LL << 21;
-    if (code) p.kind[i] = removed;
-    return code; }, par::Sum{});
+  return par::parallel_reduce(
+      p.n, 0LL,
+      SURGE_LAMBDA(int i)->long long {
+        if (p.kind[i] != fluid) return 0;
+        const Vec3 x = p.pos[i];
+        const Real rho = p.rho[i];
+        const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
+                            std::isfinite(p.vel[i].x) && std::isfinite(p.vel[i].y) && std::isfinite(p.vel[i].z);
+        long long code = 0;
+        if (!finite)
+          code = 1LL << 42;
+        else if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z)
+          code = 1;
+        else if (rho < rmin || rho > rmax)
+          code = 1LL << 21;
+        if (code) p.kind[i] = removed;
+        return code;
+      },
+      par::Sum{});
 }
 
 // Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
 // an Euler step when `euler`. Boundary densities are clamped at rho0.
 void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-    const Real rho_old = p.rho_prev[i];
-    const Real rho_now = p.rho[i];
-    Real rho_new = euler ? rho_now + dt * p.drho[i] : rho_old + 2 * dt * p.drho[i];
-    if (p.kind[i] == fluid) {
-      const Vec3 v_now = p.vel[i];
-      const Vec3 a = p.acc[i];
-      p.pos[i] += v_now * dt + a * (dt * dt / 2);
-      p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
-      p.vel_prev[i] = v_now;
-    } else if (rho_new < rho0) {
-      rho_new = rho0; // boundary particles must not pull the fluid
-    }
-    p.rho_prev[i] = rho_now;
-    p.rho[i] = rho_new;
-  });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        const Real rho_old = p.rho_prev[i];
+        const Real rho_now = p.rho[i];
+        Real rho_new = euler ? rho_now + dt * p.drho[i] : rho_old + 2 * dt * p.drho[i];
+        if (p.kind[i] == fluid) {
+          const Vec3 v_now = p.vel[i];
+          const Vec3 a = p.acc[i];
+          p.pos[i] += v_now * dt + a * (dt * dt / 2);
+          p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
+          p.vel_prev[i] = v_now;
+        } else if (rho_new < rho0) {
+          rho_new = rho0; // boundary particles must not pull the fluid
+        }
+        p.rho_prev[i] = rho_now;
+        p.rho[i] = rho_new;
+      });
 }
 
 // Symplectic position-Verlet, first half: state n saved in *_prev, advanced by dt/2.
 void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-    p.rho_prev[i] = p.rho[i];
-    Real rho = p.rho[i] + half * p.drho[i];
-    if (p.kind[i] == fluid) {
-      p.pos_prev[i] = p.pos[i];
-      p.vel_prev[i] = p.vel[i];
-      p.pos[i] += p.vel[i] * half;
-      p.vel[i] += p.acc[i] * half;
-    } else if (rho < rho0) {
-      rho = rho0;
-    }
-    p.rho[i] = rho;
-  });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        p.rho_prev[i] = p.rho[i];
+        Real rho = p.rho[i] + half * p.drho[i];
+        if (p.kind[i] == fluid) {
+          p.pos_prev[i] = p.pos[i];
+          p.vel_prev[i] = p.vel[i];
+          p.pos[i] += p.vel[i] * half;
+          p.vel[i] += p.acc[i] * half;
+        } else if (rho < rho0) {
+          rho = rho0;
+        }
+        p.rho[i] = rho;
+      });
 }
 
 // Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2.
 void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
-  par::parallel_for(p.n, SURGE_LAMBDA(int i) {
-    Real rho = p.rho_prev[i] + dt * p.drho[i];
-    if (p.kind[i] == fluid) {
-      const Vec3 v0 = p.vel_prev[i];
-      const Vec3 v1 = v0 + p.acc[i] * dt;
-      p.vel[i] = v1;
-      p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
-    } else if (rho < rho0) {
-      rho = rho0;
-    }
-    p.rho[i] = rho;
-  });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        Real rho = p.rho_prev[i] + dt * p.drho[i];
+        if (p.kind[i] == fluid) {
+          const Vec3 v0 = p.vel_prev[i];
+          const Vec3 v1 = v0 + p.acc[i] * dt;
+          p.vel[i] = v1;
+          p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
+        } else if (rho < rho0) {
+          rho = rho0;
+        }
+        p.rho[i] = rho;
+      });
 }
 } // namespace detail
 
@@ -169,7 +192,10 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
   // The grid covers the domain and every wall particle.
   Vec3 lo = dom_lo_, hi = dom_hi_;
   for (const auto& p : init.particles.pos)
-    for (int k = 0; k < 3; ++k) { lo[k] = std::fmin(lo[k], p[k]); hi[k] = std::fmax(hi[k], p[k]); }
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::fmin(lo[k], p[k]);
+      hi[k] = std::fmax(hi[k], p[k]);
+    }
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support()));
   store_.upload(init.particles);
 }
@@ -195,7 +221,8 @@ double WcsphSolver::stable_dt() {
 }
 
 int WcsphSolver::flag_removals(StepStats& s) {
-  const auto rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0), rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
+  const auto rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0),
+             rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
   const long long packed = detail::flag_removals(store_.view(), dom_lo_, dom_hi_, rmin, rmax);
   s.removed_domain = static_cast<int>(packed & ((1LL << 21) - 1));
   s.removed_density = static_cast<int>((packed >> 21) & ((1LL << 21) - 1));

@@ -14,7 +14,7 @@ namespace surge::sph {
 // The particles a case starts with, in local coordinates (absolute - origin).
 struct InitialState {
   particles::HostParticles particles;
-  Vec3d origin{};                       // case domain.min; local = absolute - origin
+  Vec3d origin{}; // case domain.min; local = absolute - origin
   std::size_t n_fluid = 0, n_wall = 0;
   // Wall particle ids of each case wall: [first, last) (ids are assigned in order).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> wall_ids;
@@ -26,9 +26,9 @@ InitialState build_initial_state(const Case& c);
 
 struct StepStats {
   double dt = 0;
-  int removed_domain = 0;   // left the domain this step
-  int removed_density = 0;  // density left [rho_min, rho_max] rho0
-  int non_finite = 0;       // NaN / inf in position, velocity or density
+  int removed_domain = 0;  // left the domain this step
+  int removed_density = 0; // density left [rho_min, rho_max] rho0
+  int non_finite = 0;      // NaN / inf in position, velocity or density
 };
 
 class WcsphSolver {
