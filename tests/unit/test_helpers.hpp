@@ -1,8 +1,13 @@
 // Small cases for tests, built in memory.
 #pragma once
 #include "surge/io/case_reader.hpp"
+#include "surge/neighbour/uniform_grid.hpp"
+#include "surge/particles/particle_store.hpp"
 
+#include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace surge::test {
 
@@ -24,6 +29,49 @@ inline std::string tank_case(double dp, double shift = 0.0, const std::string& e
          "}}]\n"
          "walls: [{name: tank, box: {min: " +
          v(0, 0, 0) + ", max: " + v(0.2, 0.1, 0.3) + "}, open: [zmax]}]\n" + extra;
+}
+
+// Neighbour ids of every particle, indexed by particle id, sorted; gathered by a
+// parallel loop in the execution space so that the test runs on every backend.
+inline std::vector<std::vector<std::uint32_t>> neighbour_ids(const neighbour::GridView& g,
+                                                             const particles::ParticleView& v, Real radius) {
+  constexpr int cap = 512;
+  const int n = v.n;
+  par::Buffer<std::uint32_t> ids(static_cast<std::size_t>(n) * cap);
+  par::Buffer<int> counts(static_cast<std::size_t>(n));
+  std::uint32_t* out = ids.data();
+  int* cnt = counts.data();
+  const Real r2 = radius * radius;
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) {
+        int c = 0;
+        neighbour::for_each_neighbour(g, v.pos[i], r2, [&](int j, const Vec3&, Real) {
+          if (c < cap) out[static_cast<std::size_t>(i) * cap + c] = v.id[j];
+          ++c;
+        });
+        cnt[i] = c;
+      });
+  const auto h_ids = par::download(ids);
+  const auto h_cnt = par::download(counts);
+  std::vector<std::uint32_t> own(static_cast<std::size_t>(n));
+  if (n > 0) {
+    par::Buffer<std::uint32_t> own_buf(static_cast<std::size_t>(n));
+    std::uint32_t* o = own_buf.data();
+    const std::uint32_t* id = v.id;
+    par::parallel_for(
+        n, SURGE_LAMBDA(int i) { o[i] = id[i]; });
+    own = par::download(own_buf);
+  }
+  std::uint32_t max_id = 0;
+  for (auto x : own) max_id = std::max(max_id, x);
+  std::vector<std::vector<std::uint32_t>> result(n > 0 ? max_id + 1 : 0);
+  for (int i = 0; i < n; ++i) {
+    if (h_cnt[i] > cap) throw std::runtime_error("neighbour_ids: more than 512 neighbours");
+    auto& l = result[own[i]];
+    l.assign(h_ids.begin() + static_cast<long>(i) * cap, h_ids.begin() + static_cast<long>(i) * cap + h_cnt[i]);
+    std::sort(l.begin(), l.end());
+  }
+  return result;
 }
 
 } // namespace surge::test

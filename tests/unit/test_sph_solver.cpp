@@ -66,6 +66,33 @@ TEST(WcsphSolver, MomentumConservedWithoutGravityOrWalls) {
   EXPECT_NE(h.vel[0].x, init.particles.vel[0].x);
 }
 
+TEST(WcsphSolver, SymplecticConservesMomentumToo) {
+  Case c = io::read_case_text("name: blob\ndp: 0.01\ngravity: [0, 0, 0]\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
+                              "sph: {c0: 20, hydrostatic_init: false, integrator: symplectic}\n"
+                              "fluid: [{box: {min: [0.4,0.4,0.4], max: [0.5,0.5,0.5]}}]\n",
+                              "blob.yaml");
+  auto init = sph::build_initial_state(c);
+  std::mt19937 rng(8);
+  std::normal_distribution<float> nd(0, 0.5f);
+  for (auto& v : init.particles.vel) v = {nd(rng), nd(rng), nd(rng)};
+  sph::WcsphSolver s(c, init);
+  auto momentum = [&] {
+    const auto h = by_id(s);
+    Vec3d p{};
+    double scale = 0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      p += Vec3d(h.vel[i]);
+      scale += norm(Vec3d(h.vel[i]));
+    }
+    return std::make_pair(p, scale);
+  };
+  const auto [p0, scale] = momentum();
+  for (int k = 0; k < 60; ++k) ASSERT_EQ(s.step(1.0).non_finite, 0);
+  const auto [p1, unused] = momentum();
+  EXPECT_LT(norm(p1 - p0) / scale, 1e-5); // same tolerance as the Verlet test
+  EXPECT_EQ(s.size(), static_cast<int>(init.n_fluid));
+}
+
 TEST(WcsphSolver, SameResultOnOneAndTwoThreads) {
   const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml");
   const auto init = sph::build_initial_state(c);
@@ -100,16 +127,7 @@ TEST(WcsphSolver, FarFromOriginGivesSameNeighboursAndValues) {
   // Neighbour sets by id.
   auto neighbours = [](sph::WcsphSolver& s) {
     s.refresh();
-    auto v = s.view();
-    const auto g = s.grid_view();
-    const Real r2 = s.params().kernel.support() * s.params().kernel.support();
-    std::map<std::uint32_t, std::vector<std::uint32_t>> out;
-    for (int i = 0; i < v.n; ++i) {
-      auto& l = out[v.id[i]];
-      neighbour::for_each_neighbour(g, v.pos[i], r2, [&](int j, const Vec3&, Real) { l.push_back(v.id[j]); });
-      std::sort(l.begin(), l.end());
-    }
-    return out;
+    return test::neighbour_ids(s.grid_view(), s.view(), s.params().kernel.support());
   };
   EXPECT_EQ(neighbours(a), neighbours(b));
   const double pa = ga.sample(a)[0], pb = gb.sample(b)[0];

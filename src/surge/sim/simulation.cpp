@@ -43,6 +43,7 @@ double peak_rss_bytes() {
 
 struct Totals {
   long removed_domain = 0, removed_density = 0, non_finite = 0;
+  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}; // where (absolute)
   [[nodiscard]] long removed() const { return removed_domain + removed_density + non_finite; }
 };
 
@@ -70,7 +71,11 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const std
     << "  \"fluid_particle_steps_per_second\": "
     << (wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(steps) / wall : 0.0) << ",\n"
     << "  \"removed\": {\"total\": " << tot.removed() << ", \"left_domain\": " << tot.removed_domain
-    << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite << "},\n"
+    << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite;
+  if (tot.removed_domain + tot.removed_density > 0)
+    j << ", \"where\": {\"min\": [" << tot.lo.x << ", " << tot.lo.y << ", " << tot.lo.z << "], \"max\": [" << tot.hi.x
+      << ", " << tot.hi.y << ", " << tot.hi.z << "]}";
+  j << "},\n"
     << "  \"peak_rss_bytes\": " << rss << ",\n  \"bytes_per_particle\": " << (n_all > 0 ? rss / n_all : 0.0) << "\n}\n";
   return j.str();
 }
@@ -175,9 +180,10 @@ int run(const Case& c, const RunOptions& opt) {
     if (since_output.removed() > 0 && !opt.quiet)
       std::fprintf(stderr,
                    "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
-                   "out of range, %ld non-finite)\n",
+                   "out of range, %ld non-finite) within x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m\n",
                    opt.progress_tty ? "\n" : "", t, since_output.removed(), since_output.removed_domain,
-                   since_output.removed_density, since_output.non_finite);
+                   since_output.removed_density, since_output.non_finite, since_output.lo.x, since_output.hi.x,
+                   since_output.lo.y, since_output.hi.y, since_output.lo.z, since_output.hi.z);
     since_output = {};
   };
 
@@ -200,6 +206,12 @@ int run(const Case& c, const RunOptions& opt) {
       x->removed_domain += s.removed_domain;
       x->removed_density += s.removed_density;
       x->non_finite += s.non_finite;
+      if (s.removed_domain + s.removed_density > 0) {
+        for (int k = 0; k < 3; ++k) {
+          x->lo[k] = std::min(x->lo[k], init.origin[k] + static_cast<double>(s.removed_lo[k]));
+          x->hi[k] = std::max(x->hi[k], init.origin[k] + static_cast<double>(s.removed_hi[k]));
+        }
+      }
     }
     if (s.non_finite > 0) {
       std::ostringstream m;

@@ -176,6 +176,34 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
         p.rho[i] = rho;
       });
 }
+// Bounding box of the particles flagged Removed this step whose positions are finite.
+std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed);
+  const Real big = std::numeric_limits<Real>::max();
+  struct Box2 {
+    Vec3 lo, hi;
+  };
+  struct Merge {
+    SURGE_HD Box2 operator()(const Box2& a, const Box2& b) const {
+      Box2 r;
+      for (int k = 0; k < 3; ++k) {
+        r.lo[k] = a.lo[k] < b.lo[k] ? a.lo[k] : b.lo[k];
+        r.hi[k] = a.hi[k] > b.hi[k] ? a.hi[k] : b.hi[k];
+      }
+      return r;
+    }
+  };
+  const Box2 empty{{big, big, big}, {-big, -big, -big}};
+  const Box2 b = par::parallel_reduce(
+      p.n, empty,
+      SURGE_LAMBDA(int i) {
+        const Vec3 x = p.pos[i];
+        if (p.kind[i] != removed || !std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z)) return empty;
+        return Box2{x, x};
+      },
+      Merge{});
+  return {b.lo, b.hi};
+}
 } // namespace detail
 
 WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
@@ -248,7 +276,11 @@ StepStats WcsphSolver::step(double dt_max) {
   }
   ++steps_;
   fresh_ = false;
-  flag_removals(s);
+  if (flag_removals(s) > 0) {
+    const auto [lo, hi] = detail::removed_bounds(store_.view());
+    s.removed_lo = lo;
+    s.removed_hi = hi;
+  }
   time_total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return s;
 }

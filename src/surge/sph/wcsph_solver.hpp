@@ -26,9 +26,10 @@ InitialState build_initial_state(const Case& c);
 
 struct StepStats {
   double dt = 0;
-  int removed_domain = 0;  // left the domain this step
-  int removed_density = 0; // density left [rho_min, rho_max] rho0
-  int non_finite = 0;      // NaN / inf in position, velocity or density
+  int removed_domain = 0;          // left the domain this step
+  int removed_density = 0;         // density left [rho_min, rho_max] rho0
+  int non_finite = 0;              // NaN / inf in position, velocity or density
+  Vec3 removed_lo{}, removed_hi{}; // where: bounding box of the removed particles with finite positions (local)
 };
 
 class WcsphSolver {
