@@ -22,11 +22,14 @@ constexpr const char* usage = R"(surge - SPH-DEM simulator for landslide-generat
 
 usage:
   surge run CASE [--out DIR] [--threads N] [--set KEY=VALUE]... [--quiet]
+  surge restart DIR [--threads N] [--set KEY=VALUE]... [--quiet]
   surge check CASE [--set KEY=VALUE]...
   surge --version
   surge --help
 
   run      runs the case; output goes to DIR (default out/<name>)
+  restart  continues the run in DIR from its last checkpoint (written with every
+           output), with DIR/case.yaml; e.g. --set time.end=10 to run longer
   check    validates the case and prints particle counts, memory, first time
            step, estimated run time and resolution warnings
   --set    overrides any case-file value, e.g. --set dp=0.02 --set time.end=0.5
@@ -54,7 +57,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   const std::string cmd = args[0];
-  if (cmd != "run" && cmd != "check") return fail_usage("unknown command '" + cmd + "'");
+  if (cmd != "run" && cmd != "check" && cmd != "restart") return fail_usage("unknown command '" + cmd + "'");
+  const bool runs = cmd == "run" || cmd == "restart";
   std::string case_path, out_dir;
   surge::io::Overrides sets;
   int threads = 0;
@@ -70,17 +74,17 @@ int main(int argc, char** argv) {
       const auto* v = value("--set");
       if (!v) return fail_usage("--set needs KEY=VALUE");
       sets.push_back(*v);
-    } else if (a == "--out" && cmd == "run") {
+    } else if (a == "--out" && runs) {
       const auto* v = value("--out");
       if (!v) return fail_usage("--out needs a folder");
       out_dir = *v;
-    } else if (a == "--threads" && cmd == "run") {
+    } else if (a == "--threads" && runs) {
       const auto* v = value("--threads");
       char* end = nullptr;
       const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
       if (!v || *end != '\0' || n < 1 || n > 4096) return fail_usage("--threads needs a positive integer");
       threads = static_cast<int>(n);
-    } else if (a == "--quiet" && cmd == "run") {
+    } else if (a == "--quiet" && runs) {
       quiet = true;
     } else if (!a.empty() && a[0] == '-') {
       return fail_usage("unknown option '" + a + "'");
@@ -90,7 +94,12 @@ int main(int argc, char** argv) {
       return fail_usage("more than one case file given");
     }
   }
-  if (case_path.empty()) return fail_usage("no case file given");
+  if (case_path.empty()) return fail_usage(cmd == "restart" ? "no output folder given" : "no case file given");
+  if (cmd == "restart") {
+    if (!out_dir.empty()) return fail_usage("restart writes into the folder it continues; --out is not allowed");
+    out_dir = case_path;
+    case_path = out_dir + "/case.yaml";
+  }
   try {
     const surge::Case c = surge::io::read_case(case_path, sets);
     if (cmd == "check") return surge::sim::check(c);
@@ -102,6 +111,7 @@ int main(int argc, char** argv) {
     opt.stop = &g_stop;
     opt.progress_tty = isatty(STDERR_FILENO) != 0;
     opt.quiet = quiet;
+    opt.restart = cmd == "restart";
     return surge::sim::run(c, opt);
   } catch (const surge::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -18,6 +18,8 @@ class PvdCollection {
 public:
   explicit PvdCollection(std::string path) : path_(std::move(path)) {}
   void add(double time, const std::string& relative_file);
+  // Entries already on disk (a restarted run), without rewriting the file.
+  void restore(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
 
 private:
   std::string path_;

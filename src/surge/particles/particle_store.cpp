@@ -7,10 +7,10 @@ void ParticleStore::upload(const HostParticles& h) {
   const auto n = h.size();
   par::upload(pos_, h.pos);
   par::upload(vel_, h.vel);
-  par::upload(vel_prev_, h.vel);
+  par::upload(vel_prev_, h.vel_prev.size() == n ? h.vel_prev : h.vel);
   par::upload(pos_prev_, h.pos);
   par::upload(rho_, h.rho);
-  par::upload(rho_prev_, h.rho);
+  par::upload(rho_prev_, h.rho_prev.size() == n ? h.rho_prev : h.rho);
   par::upload(press_, h.press);
   par::upload(kind_, h.kind);
   par::upload(id_, h.id);
@@ -23,7 +23,7 @@ void ParticleStore::upload(const HostParticles& h) {
   par::fill(vsig_, Real(0));
 }
 
-void ParticleStore::download(HostParticles& h) const {
+void ParticleStore::download(HostParticles& h, bool history) const {
   const auto n = static_cast<std::size_t>(n_);
   par::download(h.pos, pos_, n);
   par::download(h.vel, vel_, n);
@@ -31,6 +31,13 @@ void ParticleStore::download(HostParticles& h) const {
   par::download(h.press, press_, n);
   par::download(h.kind, kind_, n);
   par::download(h.id, id_, n);
+  if (history) {
+    par::download(h.vel_prev, vel_prev_, n);
+    par::download(h.rho_prev, rho_prev_, n);
+  } else {
+    h.vel_prev.clear();
+    h.rho_prev.clear();
+  }
 }
 
 ParticleView ParticleStore::view() {

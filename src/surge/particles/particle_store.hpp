@@ -15,6 +15,9 @@ struct HostParticles {
   std::vector<Real> rho, press;
   std::vector<std::uint8_t> kind;
   std::vector<std::uint32_t> id;
+  // Time-integration history (Verlet's v^{n-1}, rho^{n-1}); filled for checkpoints only.
+  std::vector<Vec3> vel_prev;
+  std::vector<Real> rho_prev;
   [[nodiscard]] std::size_t size() const { return pos.size(); }
   void push(const Vec3& p, const Vec3& v, Real density, Kind k, std::uint32_t ident) {
     pos.push_back(p);
@@ -45,10 +48,12 @@ struct ParticleView {
 
 class ParticleStore {
 public:
-  // Replaces the contents with host data (velocities become both v^n and v^{n-1}).
+  // Replaces the contents with host data; without vel_prev / rho_prev the
+  // current values also become v^{n-1} and rho^{n-1}.
   void upload(const HostParticles& h);
-  // Copies the current state to the host (pressure included).
-  void download(HostParticles& h) const;
+  // Copies the current state to the host (pressure included); with `history`
+  // also vel_prev and rho_prev (for checkpoints).
+  void download(HostParticles& h, bool history = false) const;
 
   [[nodiscard]] int size() const { return n_; }
   [[nodiscard]] ParticleView view();

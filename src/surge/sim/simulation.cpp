@@ -5,6 +5,7 @@
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
+#include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
@@ -142,12 +143,21 @@ int run(const Case& c, const RunOptions& opt) {
 
   namespace fs = std::filesystem;
   const fs::path out(opt.out_dir);
+  io::Checkpoint ck;
+  if (opt.restart) {
+    ck = io::read_checkpoint((out / "checkpoint.bin").string());
+    if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges.names().size() + 1)
+      throw InputError((out / "checkpoint.bin").string(), 0, "gauges",
+                       "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
+  }
   fs::create_directories(out / "particles");
   io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
-  io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
   io::PvdCollection walls_pvd((out / "walls.pvd").string());
-  walls_pvd.add(0.0, "particles/walls_0000.vtp");
   io::PvdCollection fluid_pvd((out / "fluid.pvd").string());
+  if (!opt.restart) {
+    io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
+    walls_pvd.add(0.0, "particles/walls_0000.vtp");
+  }
 
   particles::HostParticles host;
   std::vector<std::vector<double>> rows;
@@ -155,6 +165,7 @@ int run(const Case& c, const RunOptions& opt) {
   double t = 0;
   int frame = 0;
   std::size_t rows_written = 0;
+  std::vector<double> frame_times;
   auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     io::write_file_atomic(
@@ -166,6 +177,22 @@ int run(const Case& c, const RunOptions& opt) {
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };
+  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
+  auto write_checkpoint = [&] {
+    io::Checkpoint k;
+    k.time = t;
+    k.steps = solver.step_count();
+    k.frame = frame;
+    k.next_output = next_out;
+    k.next_gauge = next_gauge;
+    k.frame_times = frame_times;
+    k.gauge_rows = rows;
+    k.removed_domain = tot.removed_domain;
+    k.removed_density = tot.removed_density;
+    k.non_finite = tot.non_finite;
+    solver.download(k.particles, true);
+    io::write_checkpoint((out / "checkpoint.bin").string(), k);
+  };
   auto write_output = [&] {
     solver.refresh();
     solver.download(host);
@@ -173,10 +200,12 @@ int run(const Case& c, const RunOptions& opt) {
     std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
     io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
     fluid_pvd.add(t, std::string("particles/") + name);
+    frame_times.push_back(t);
     io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
     rows_written = rows.size();
-    write_summary("running", 0, "");
     ++frame;
+    write_checkpoint();
+    write_summary("running", 0, "");
     if (since_output.removed() > 0 && !opt.quiet)
       std::fprintf(stderr,
                    "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
@@ -187,10 +216,34 @@ int run(const Case& c, const RunOptions& opt) {
     since_output = {};
   };
 
-  sample_gauges();
-  write_output();
+  if (opt.restart) {
+    // Continue exactly where the checkpoint was written (at an output time).
+    t = ck.time;
+    frame = ck.frame;
+    next_out = ck.next_output;
+    next_gauge = ck.next_gauge;
+    frame_times = ck.frame_times;
+    rows = ck.gauge_rows;
+    rows_written = rows.size();
+    tot.removed_domain = ck.removed_domain;
+    tot.removed_density = ck.removed_density;
+    tot.non_finite = ck.non_finite;
+    std::vector<std::pair<double, std::string>> entries;
+    for (int k = 0; k < static_cast<int>(frame_times.size()); ++k) {
+      char name[64];
+      std::snprintf(name, sizeof name, "particles/fluid_%04d.vtp", k);
+      entries.emplace_back(frame_times[k], name);
+    }
+    fluid_pvd.restore(entries);
+    walls_pvd.restore({{0.0, "particles/walls_0000.vtp"}});
+    solver.restore(ck.particles, ck.steps);
+    ck.particles = {};
+    if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
+  } else {
+    sample_gauges();
+    write_output();
+  }
   const double eps = 1e-9 * c.time.end;
-  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   const double dt_min = c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c);
   const double max_removed = c.sph.max_removed_share * static_cast<double>(init.n_fluid);
   auto last_report = Clock::now();

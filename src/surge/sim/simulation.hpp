@@ -14,9 +14,11 @@ struct RunOptions {
   bool progress_tty = false;                  // one updating line instead of periodic lines
   double report_every_s = 10.0;               // plain progress lines every so many seconds
   bool quiet = false;
+  bool restart = false; // continue from out_dir/checkpoint.bin
 };
 
-// Exit codes: 0 done, 3 diverged, 130 interrupted.
+// Exit codes: 0 done, 3 diverged, 130 interrupted. A checkpoint (checkpoint.bin)
+// is written with every output; with opt.restart the run continues from it.
 int run(const Case& c, const RunOptions& opt);
 
 // Prints what `surge check` reports; returns 0.

@@ -237,6 +237,12 @@ void WcsphSolver::sort_and_rates() {
   fresh_ = true;
 }
 
+void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
+  store_.upload(h);
+  steps_ = steps;
+  fresh_ = false;
+}
+
 void WcsphSolver::refresh() {
   if (!fresh_) sort_and_rates();
 }

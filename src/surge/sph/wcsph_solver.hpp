@@ -47,7 +47,9 @@ public:
   [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes(); }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
-  void download(particles::HostParticles& h) const { store_.download(h); }
+  void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
+  // Continues from a checkpoint: particles with their integration history, and the step count.
+  void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
   void refresh();
 

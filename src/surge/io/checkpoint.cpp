@@ -1,0 +1,131 @@
+#include "surge/io/checkpoint.hpp"
+
+#include "surge/core/error.hpp"
+#include "surge/io/atomic_file.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace surge::io {
+namespace {
+
+constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '1'};
+
+class Writer {
+public:
+  template <class T>
+  void put(const T& v) {
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <class T>
+  void put_vec(const std::vector<T>& v) {
+    put<std::uint64_t>(v.size());
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  std::string bytes_;
+};
+
+class Reader {
+public:
+  Reader(const std::string& bytes, const std::string& path) : b_(bytes), path_(path) {}
+  template <class T>
+  T get() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, b_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vec() {
+    const auto n = get<std::uint64_t>();
+    if (n > b_.size()) fail();
+    need(n * sizeof(T));
+    std::vector<T> v(n);
+    std::memcpy(v.data(), b_.data() + pos_, n * sizeof(T));
+    pos_ += n * sizeof(T);
+    return v;
+  }
+  [[noreturn]] void fail() const { throw InputError(path_, 0, "", "checkpoint is truncated or corrupt"); }
+  void need(std::size_t n) const {
+    if (pos_ + n > b_.size()) fail();
+  }
+  [[nodiscard]] bool done() const { return pos_ == b_.size(); }
+
+private:
+  const std::string& b_;
+  std::string path_;
+  std::size_t pos_ = 0;
+};
+
+} // namespace
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  Writer w;
+  w.bytes_.append(magic, sizeof magic);
+  w.put<std::uint32_t>(sizeof(Real));
+  w.put(c.time);
+  w.put<std::int64_t>(c.steps);
+  w.put<std::int32_t>(c.frame);
+  w.put(c.next_output);
+  w.put(c.next_gauge);
+  w.put<std::int64_t>(c.removed_domain);
+  w.put<std::int64_t>(c.removed_density);
+  w.put<std::int64_t>(c.non_finite);
+  w.put_vec(c.frame_times);
+  w.put<std::uint64_t>(c.gauge_rows.size());
+  for (const auto& r : c.gauge_rows) w.put_vec(r);
+  const auto& p = c.particles;
+  w.put_vec(p.pos);
+  w.put_vec(p.vel);
+  w.put_vec(p.vel_prev);
+  w.put_vec(p.rho);
+  w.put_vec(p.rho_prev);
+  w.put_vec(p.kind);
+  w.put_vec(p.id);
+  write_file_atomic(path, w.bytes_);
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the checkpoint (was the run started with this output folder?)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  if (bytes.size() < sizeof magic || std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+    throw InputError(path, 0, "", "not a surge checkpoint");
+  Reader r(bytes, path);
+  for (std::size_t k = 0; k < sizeof magic; ++k) (void)r.get<char>();
+  if (r.get<std::uint32_t>() != sizeof(Real))
+    throw InputError(path, 0, "", "checkpoint written by a build with another precision (Real)");
+  Checkpoint c;
+  c.time = r.get<double>();
+  c.steps = r.get<std::int64_t>();
+  c.frame = r.get<std::int32_t>();
+  c.next_output = r.get<double>();
+  c.next_gauge = r.get<double>();
+  c.removed_domain = r.get<std::int64_t>();
+  c.removed_density = r.get<std::int64_t>();
+  c.non_finite = r.get<std::int64_t>();
+  c.frame_times = r.get_vec<double>();
+  const auto rows = r.get<std::uint64_t>();
+  if (rows > bytes.size()) r.fail();
+  for (std::uint64_t k = 0; k < rows; ++k) c.gauge_rows.push_back(r.get_vec<double>());
+  auto& p = c.particles;
+  p.pos = r.get_vec<Vec3>();
+  p.vel = r.get_vec<Vec3>();
+  p.vel_prev = r.get_vec<Vec3>();
+  p.rho = r.get_vec<Real>();
+  p.rho_prev = r.get_vec<Real>();
+  p.kind = r.get_vec<std::uint8_t>();
+  p.id = r.get_vec<std::uint32_t>();
+  const auto n = p.pos.size();
+  if (p.vel.size() != n || p.vel_prev.size() != n || p.rho.size() != n || p.rho_prev.size() != n ||
+      p.kind.size() != n || p.id.size() != n || !r.done())
+    r.fail();
+  p.press.assign(n, 0);
+  return c;
+}
+
+} // namespace surge::io
