@@ -37,50 +37,48 @@ struct GridView {
   const Vec3* pos = nullptr;
 };
 
-// Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
-// scanning the 27 cells around x as 9 contiguous rows. Includes x's own particle.
-template <class F>
-SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
-  const GridSpec& s = g.spec;
+// Calls row(first_cell, last_cell) for the 9 rows of up to 3 cells (along x) that
+// make up the 27-cell stencil around x, clipped to the grid.
+template <class R>
+SURGE_HD inline void for_each_stencil_row(const GridSpec& s, const Vec3& x, R&& row) {
   const int cx = s.coord(x.x, s.lo.x, s.nx), cy = s.coord(x.y, s.lo.y, s.ny), cz = s.coord(x.z, s.lo.z, s.nz);
   const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < s.nx ? cx + 1 : s.nx - 1;
   for (int z = cz - 1; z <= cz + 1; ++z) {
     if (z < 0 || z >= s.nz) continue;
     for (int y = cy - 1; y <= cy + 1; ++y) {
       if (y < 0 || y >= s.ny) continue;
-      const int row = s.nx * (y + s.ny * z);
-      const std::uint32_t end = g.cell_start[2 * (row + x1 + 1)];
-      for (std::uint32_t j = g.cell_start[2 * (row + x0)]; j < end; ++j) {
-        const Vec3 d = x - g.pos[j];
-        const Real r2 = dot(d, d);
-        if (r2 < r2max) f(static_cast<int>(j), d, r2);
-      }
+      const int base = s.nx * (y + s.ny * z);
+      row(base + x0, base + x1);
     }
   }
+}
+
+// Calls f(j, x - pos[j], |x - pos[j]|^2) for each j in [begin, end) closer than sqrt(r2max).
+template <class F>
+SURGE_HD inline void scan_range(const GridView& g, const Vec3& x, Real r2max, std::uint32_t begin, std::uint32_t end,
+                                F& f) {
+  for (std::uint32_t j = begin; j < end; ++j) {
+    const Vec3 d = x - g.pos[j];
+    const Real r2 = dot(d, d);
+    if (r2 < r2max) f(static_cast<int>(j), d, r2);
+  }
+}
+
+// Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
+// scanning the 27 cells around x as 9 contiguous rows. Includes x's own particle.
+template <class F>
+SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
+  for_each_stencil_row(
+      g.spec, x, [&](int c0, int c1) { scan_range(g, x, r2max, g.cell_start[2 * c0], g.cell_start[2 * (c1 + 1)], f); });
 }
 
 // Like for_each_neighbour, over class-0 (fluid) particles only: what boundary
 // particles need, without scanning the other boundary particles around them.
 template <class F>
 SURGE_HD inline void for_each_fluid_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
-  const GridSpec& s = g.spec;
-  const int cx = s.coord(x.x, s.lo.x, s.nx), cy = s.coord(x.y, s.lo.y, s.ny), cz = s.coord(x.z, s.lo.z, s.nz);
-  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < s.nx ? cx + 1 : s.nx - 1;
-  for (int z = cz - 1; z <= cz + 1; ++z) {
-    if (z < 0 || z >= s.nz) continue;
-    for (int y = cy - 1; y <= cy + 1; ++y) {
-      if (y < 0 || y >= s.ny) continue;
-      const int row = s.nx * (y + s.ny * z);
-      for (int c = row + x0; c <= row + x1; ++c) {
-        const std::uint32_t end = g.cell_start[2 * c + 1];
-        for (std::uint32_t j = g.cell_start[2 * c]; j < end; ++j) {
-          const Vec3 d = x - g.pos[j];
-          const Real r2 = dot(d, d);
-          if (r2 < r2max) f(static_cast<int>(j), d, r2);
-        }
-      }
-    }
-  }
+  for_each_stencil_row(g.spec, x, [&](int c0, int c1) {
+    for (int c = c0; c <= c1; ++c) scan_range(g, x, r2max, g.cell_start[2 * c], g.cell_start[2 * c + 1], f);
+  });
 }
 
 // Sorting state: keys, the permutation of the last sort, the cell start table.
