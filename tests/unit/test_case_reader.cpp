@@ -82,6 +82,13 @@ TEST(CaseReader, WaterOutsideTheTank) {
   expect_error(t, 5, "fluid.0.box", "outside the domain");
 }
 
+TEST(CaseReader, WaterCrossingTheTankWalls) {
+  const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [2,1,1]}\n"
+                        "fluid:\n  - box: {min: [0,0,0], max: [1.5,1,0.5]}\n"
+                        "walls:\n  - {name: tank, box: {min: [0,0,0], max: [1,1,1]}}\n";
+  expect_error(t, 5, "fluid.0.box", "crosses the walls of 'tank'");
+}
+
 TEST(CaseReader, EmptyFluidRegion) {
   const std::string t = "name: x\ndp: 0.01\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
                         "fluid:\n  - box: {min: [0,0,0], max: [0.5,0.005,0.5]}\n";

@@ -311,6 +311,23 @@ Case parse(const YAML::Node& root, Reader& r) {
     }
   }
 
+  // Water must not overlap a tank's wall layers: a fluid box is either inside a box
+  // tank or clear of it.
+  for (std::size_t i = 0; i < c.fluid.size(); ++i) {
+    const Box& f = c.fluid[i].box;
+    for (const auto& w : c.walls) {
+      if (w.is_mesh || w.solid) continue;
+      const Box& t = w.box;
+      const bool inside = t.contains(f.min, 1e-9) && t.contains(f.max, 1e-9);
+      bool apart = false;
+      for (int k = 0; k < 3; ++k) apart = apart || f.max[k] <= t.min[k] + 1e-9 || f.min[k] >= t.max[k] - 1e-9;
+      if (!inside && !apart)
+        r.fail(fluid[i]["box"], "fluid." + std::to_string(i) + ".box",
+               "water crosses the walls of '" + w.name + "' (line " + std::to_string(w.line) +
+                   "); put the fluid box inside the tank");
+    }
+  }
+
   const YAML::Node gauges = root["gauges"];
   if (gauges.IsDefined() && !gauges.IsNull()) {
     if (!gauges.IsSequence()) r.fail(gauges, "gauges", "expected a list of gauges");
