@@ -1,0 +1,101 @@
+// Linear spring-dashpot contact law of the paper's DEM (SPEC §3), as host/device
+// value types. Not yet wired into a DEM solver: the DEM issue builds on these.
+//
+// normal:   F_n = k_n u_n + c_n du_n/dt along n, 1/k_n = 1/(E_A r_A) + 1/(E_B r_B),
+//           c_n = 2 beta sqrt(m* k_n), beta = -ln e / sqrt(pi^2 + ln^2 e);
+//           an unbonded contact never pulls: F_n < 0 is clipped to 0.
+// shear:    incremental, F_s <- R(F_s) - k_s du_s, |F_s| <= |F_n| tan(phi) (+ C_s r'^2 bonded),
+//           1/k_s = 1/(E_A nu_A r_A) + 1/(E_B nu_B r_B)
+// rolling / twisting: M = K theta, K = k_{r/t} r'^2 k_s, |M| <= k^max |F_n| r', at the
+//           cap theta is reset so that K theta = M_max.
+#pragma once
+#include "surge/core/types.hpp"
+
+namespace surge::dem {
+
+inline constexpr double pi = 3.14159265358979323846;
+
+// Series stiffness of two springs of stiffness a and b.
+[[nodiscard]] SURGE_HD inline Real series(Real a, Real b) { return 1 / (1 / a + 1 / b); }
+
+// k_n from the two-spring formula.
+[[nodiscard]] SURGE_HD inline Real normal_stiffness(Real e_a, Real r_a, Real e_b, Real r_b) {
+  return series(e_a * r_a, e_b * r_b);
+}
+// k_s from the two-spring formula (nu: shear-to-normal stiffness ratio).
+[[nodiscard]] SURGE_HD inline Real shear_stiffness(Real e_a, Real nu_a, Real r_a, Real e_b, Real nu_b, Real r_b) {
+  return series(e_a * nu_a * r_a, e_b * nu_b * r_b);
+}
+// Damping ratio that gives restitution e for the unclipped linear oscillator.
+[[nodiscard]] SURGE_HD inline Real damping_ratio(Real e) {
+  if (e >= 1) return 0;
+  const Real l = std::log(e);
+  return -l / std::sqrt(Real(pi * pi) + l * l);
+}
+
+struct NormalSpringDashpot {
+  Real kn = 0; // stiffness [N/m]
+  Real cn = 0; // damping [N s/m]
+
+  SURGE_HD NormalSpringDashpot() = default;
+  SURGE_HD NormalSpringDashpot(Real kn_, Real mstar, Real restitution)
+      : kn(kn_), cn(2 * damping_ratio(restitution) * std::sqrt(mstar * kn_)) {}
+
+  // Normal force along n (positive pushes apart) for overlap un and overlap rate dun
+  // (dun > 0 while approaching). Unbonded contacts are clipped at zero.
+  [[nodiscard]] SURGE_HD Real force(Real un, Real dun, bool bonded) const {
+    const Real f = kn * un + cn * dun;
+    return (!bonded && f < 0) ? Real(0) : f;
+  }
+};
+
+// Removes from v its component along the unit normal n.
+[[nodiscard]] SURGE_HD inline Vec3 tangential(const Vec3& v, const Vec3& n) { return v - n * dot(v, n); }
+
+// Stored shear force rotated into the tangent plane of the new normal, keeping its magnitude.
+[[nodiscard]] SURGE_HD inline Vec3 rotate_into_plane(const Vec3& fs, const Vec3& n) {
+  const Vec3 t = tangential(fs, n);
+  const Real lt = norm(t), lf = norm(fs);
+  return lt > 0 ? t * (lf / lt) : Vec3{};
+}
+
+// Scales v back to length at most cap (Coulomb limit, rolling cap).
+[[nodiscard]] SURGE_HD inline Vec3 cap_length(const Vec3& v, Real cap) {
+  const Real l = norm(v);
+  return l > cap && l > 0 ? v * (cap / l) : v;
+}
+
+// Incremental shear spring: previous force (any orientation), new normal n, tangential
+// relative displacement of the contact point du over the step, Coulomb limit.
+// Returns the new shear force and whether the contact slipped.
+struct ShearUpdate {
+  Vec3 force;
+  bool slipped;
+};
+[[nodiscard]] SURGE_HD inline ShearUpdate shear_force(const Vec3& fs_old, const Vec3& n, const Vec3& du, Real ks,
+                                                      Real limit) {
+  const Vec3 trial = rotate_into_plane(fs_old, n) - tangential(du, n) * ks;
+  const Real l = norm(trial);
+  if (l > limit) return {cap_length(trial, limit), true};
+  return {trial, false};
+}
+
+// Rolling or twisting spring with a cap: theta accumulates the relative rotation;
+// the moment is K theta capped at m_max, and theta is reset to m_max / K at the cap.
+struct ResistanceUpdate {
+  Vec3 theta;
+  Vec3 moment;
+};
+[[nodiscard]] SURGE_HD inline ResistanceUpdate resistance_moment(const Vec3& theta_old, const Vec3& dtheta, Real k,
+                                                                 Real m_max) {
+  Vec3 theta = theta_old + dtheta;
+  Vec3 m = theta * k;
+  const Real lm = norm(m);
+  if (lm > m_max && lm > 0) {
+    m = m * (m_max / lm);
+    theta = m * (1 / k);
+  }
+  return {theta, -m}; // the moment opposes the relative rotation
+}
+
+} // namespace surge::dem
