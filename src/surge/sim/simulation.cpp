@@ -22,11 +22,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Throughput assumed by `surge check` for its run-time estimate (2 threads, this
-// project's CPU benchmark, rounded down).
-constexpr double assumed_particle_steps_per_s = 1.0e6;
-// Bytes held per particle by the solver (fields + sort scratch + keys), see ParticleStore.
-constexpr double bytes_per_particle_estimate = 120.0;
+// Throughput assumed by `surge check` for its run-time estimate: all-particle steps
+// per second on 2 CPU threads, docs/benchmarks.md (2.3-2.6e6 measured), rounded down.
+constexpr double assumed_particle_steps_per_s = 2.0e6;
+// Peak memory per particle (solver buffers 118 B + host copies for output), docs/benchmarks.md.
+constexpr double bytes_per_particle_estimate = 150.0;
 
 std::string hms(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--:--";
