@@ -1,7 +1,7 @@
 // The DEM contact law (SPEC §3) against closed forms: a head-on impact of two spheres
 // integrated with a small step, compared with the damped linear oscillator with the
 // normal force clipped at zero (the model as implemented); shear and rolling caps.
-#include "surge/dem/contact_linear_spring.hpp"
+#include "dem_closed_form.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +9,10 @@
 
 using namespace surge;
 using namespace surge::dem;
+using surge::test::closed_form;
+using surge::test::Impact;
 
 namespace {
-
-struct Impact {
-  double duration = 0, restitution = 0, momentum_error = 0, max_overlap = 0;
-};
 
 // Two equal spheres (r = 1 cm, rho = 2500, E = 1 MPa) approaching head-on at v0,
 // semi-implicit Euler with dt = t_c / 20000. Double precision for the oracle run.
@@ -56,28 +54,6 @@ Impact collide(double e, double v0) {
   out.restitution = (vb - va) / v0;
   out.momentum_error = std::fabs(m * va + m * vb - p0);
   return out;
-}
-
-// Closed form for the clipped linear spring-dashpot: the force vanishes at t* with
-// tan(w_d t*) = -2 beta sqrt(1 - beta^2) / (1 - 2 beta^2); after that the spheres move
-// apart at constant speed until the overlap is gone.
-Impact closed_form(double e, double v0) {
-  const double r = 0.01, rho = 2500, E = 1.0e6;
-  const double m = rho * 4.0 / 3.0 * pi * r * r * r;
-  const double kn = E * r / 2, mstar = m / 2;
-  const double w0 = std::sqrt(kn / mstar);
-  const double beta = e >= 1 ? 0 : -std::log(e) / std::sqrt(pi * pi + std::log(e) * std::log(e));
-  const double wd = w0 * std::sqrt(1 - beta * beta);
-  double phase = pi; // w_d t*
-  if (beta > 0) phase = pi - std::atan(2 * beta * std::sqrt(1 - beta * beta) / (1 - 2 * beta * beta));
-  const double ts = phase / wd;
-  const double decay = std::exp(-beta * w0 * ts);
-  const double u = v0 / wd * decay * std::sin(phase);
-  const double du = v0 * decay * (std::cos(phase) - beta * w0 / wd * std::sin(phase));
-  Impact c;
-  c.restitution = -du / v0;
-  c.duration = ts + (u > 0 ? u / -du : 0);
-  return c;
 }
 
 } // namespace

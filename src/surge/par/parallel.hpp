@@ -209,6 +209,26 @@ std::vector<T> download(const Buffer<T>& src) {
   download(v, src, src.size());
   return v;
 }
+// field <- field[perm], moving blocks of `block` consecutive elements (a particle's
+// row of per-contact history, say), through tmp; the buffers are swapped, not copied back.
+template <class T>
+void gather(Buffer<T>& field, Buffer<T>& tmp, const std::uint32_t* perm, int n, int block = 1) {
+  tmp.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(block));
+  T* out = tmp.data();
+  const T* in = field.data();
+  if (block == 1) {
+    parallel_for(
+        n, SURGE_LAMBDA(int i) { out[i] = in[perm[i]]; });
+  } else {
+    parallel_for(
+        n * block, SURGE_LAMBDA(int k) {
+          const int i = k / block;
+          out[k] = in[static_cast<std::size_t>(perm[i]) * block + (k - i * block)];
+        });
+  }
+  field.swap(tmp);
+}
+
 template <class T>
 void fill(Buffer<T>& b, T value) {
   T* p = b.data();

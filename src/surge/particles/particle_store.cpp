@@ -46,22 +46,10 @@ ParticleView ParticleStore::view() {
           vsig_.data(), kind_.data(), id_.data()};
 }
 
-namespace detail {
-// field <- field[perm], through tmp (the buffers are swapped, not copied back).
-template <class T>
-void gather(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm, int n) {
-  tmp.resize(static_cast<std::size_t>(n));
-  T* out = tmp.data();
-  const T* in = field.data();
-  par::parallel_for(
-      n, SURGE_LAMBDA(int i) { out[i] = in[perm[i]]; });
-  field.swap(tmp);
-}
-} // namespace detail
 
 template <class T>
 void ParticleStore::reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm) {
-  detail::gather(field, tmp, perm, n_);
+  par::gather(field, tmp, perm, n_);
 }
 
 int ParticleStore::sort(neighbour::UniformGrid& grid) {

@@ -1,0 +1,329 @@
+#include "surge/dem/dem_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace surge::dem {
+namespace detail {
+
+// The pair terms of one contact, for the canonical side A (lower id, or the sphere
+// against a plane). Everything both sides need comes from here, computed once per side
+// with identical inputs, so the two sides agree exactly.
+struct PairResult {
+  Vec3 force_a;     // total contact force on A
+  Vec3 torque_a;    // about A's centre
+  Vec3 torque_b;    // about B's centre (zero for planes)
+  ContactSlot slot; // A-side history after this step
+};
+
+struct PairInput {
+  Vec3 n;      // unit normal, from B to A
+  Real un;     // overlap
+  Real ra, rb; // radii (rb: 0 for a plane)
+  Vec3 va, wa, vb, wb;
+  Real mstar, kn, ks, cn_e; // reduced mass, stiffnesses, restitution
+  Real tan_phi;
+  Real k_roll, k_roll_max, k_twist, k_twist_max;
+  Real rmin; // r' = min(r_A, r_B)
+};
+
+SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& old, Real dt) {
+  const Vec3 n = in.n;
+  const Vec3 ca = n * (-(in.ra - in.un / 2)); // contact point relative to A's centre
+  const Vec3 cb = n * (in.rb - in.un / 2);    // ... relative to B's centre
+  const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
+  const Real dun = -dot(vrel, n);
+  const NormalSpringDashpot law(in.kn, in.mstar, in.cn_e);
+  const Real fn = law.force(in.un, dun, false);
+  const ShearUpdate sh = shear_force(old.shear, n, vrel * dt, in.ks, fn * in.tan_phi);
+  const Vec3 dtheta = (in.wa - in.wb) * dt;
+  const Vec3 droll = tangential(dtheta, n);
+  const Vec3 dtwist = n * dot(dtheta, n);
+  const Real kr = in.k_roll * in.rmin * in.rmin * in.ks, kt = in.k_twist * in.rmin * in.rmin * in.ks;
+  PairResult r;
+  r.slot.shear = sh.force;
+  Vec3 m_roll{}, m_twist{};
+  if (kr > 0) {
+    const ResistanceUpdate u =
+        resistance_moment(rotate_into_plane(old.roll, n), droll, kr, in.k_roll_max * fn * in.rmin);
+    r.slot.roll = u.theta;
+    m_roll = u.moment;
+  }
+  if (kt > 0) {
+    const ResistanceUpdate u = resistance_moment(n * dot(old.twist, n), dtwist, kt, in.k_twist_max * fn * in.rmin);
+    r.slot.twist = u.theta;
+    m_twist = u.moment;
+  }
+  r.force_a = n * fn + sh.force;
+  r.torque_a = cross(ca, sh.force) + m_roll + m_twist;
+  r.torque_b = cross(cb, sh.force * Real(-1)) - m_roll - m_twist;
+  return r;
+}
+
+SURGE_HD inline const ContactSlot* find_slot(const ContactSlot* row, std::uint32_t partner) {
+  for (int k = 0; k < max_contacts; ++k)
+    if (row[k].partner == partner) return &row[k];
+  return nullptr;
+}
+
+SURGE_HD inline ContactSlot negated(const ContactSlot& s) {
+  ContactSlot o = s;
+  o.shear = s.shear * Real(-1);
+  o.roll = s.roll * Real(-1);
+  o.twist = s.twist * Real(-1);
+  return o;
+}
+
+void contacts(const DemView& v, const neighbour::GridView& g, const Material* mats, const Plane* planes, int n_planes,
+              Real reach, Real dt) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const ContactSlot* old_row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
+        ContactSlot* new_row = v.hist_new + static_cast<std::size_t>(i) * max_contacts;
+        for (int k = 0; k < max_contacts; ++k) new_row[k] = ContactSlot{};
+        int used = 0;
+        Vec3 f{}, t{};
+        const Vec3 xi = v.pos[i];
+        const Real ri = v.radius[i];
+        const Material mi = mats[v.material[i]];
+        const std::uint32_t idi = v.id[i];
+        auto store = [&](std::uint32_t partner, const ContactSlot& s) {
+          if (used < max_contacts) {
+            new_row[used] = s;
+            new_row[used].partner = partner;
+            ++used;
+          }
+        };
+        neighbour::for_each_neighbour(g, xi, reach * reach, [&](int j, const Vec3&, Real) {
+          if (j == i) return;
+          const Real rj = v.radius[j];
+          const Vec3 d0 = xi - v.pos[j];
+          const Real dist = norm(d0);
+          if (!(dist < ri + rj) || dist <= 0) return;
+          const std::uint32_t idj = v.id[j];
+          const bool i_is_a = idi < idj;
+          const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+          const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
+          PairInput in;
+          const Vec3 dab = v.pos[a] - v.pos[b];
+          in.n = dab * (1 / dist);
+          in.un = v.radius[a] + v.radius[b] - dist;
+          in.ra = v.radius[a];
+          in.rb = v.radius[b];
+          in.va = v.vel[a];
+          in.wa = v.omega[a];
+          in.vb = v.vel[b];
+          in.wb = v.omega[b];
+          in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
+          in.kn = normal_stiffness(ma.young, in.ra, mb.young, in.rb);
+          in.ks = shear_stiffness(ma.young, ma.nu, in.ra, mb.young, mb.nu, in.rb);
+          in.cn_e = ma.restitution < mb.restitution ? ma.restitution : mb.restitution;
+          in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
+          in.k_roll = (ma.k_roll + mb.k_roll) / 2;
+          in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
+          in.k_twist = (ma.k_twist + mb.k_twist) / 2;
+          in.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
+          in.rmin = in.ra < in.rb ? in.ra : in.rb;
+          const ContactSlot* s = find_slot(old_row, idj);
+          ContactSlot old_a{};
+          if (s) old_a = i_is_a ? *s : negated(*s);
+          const PairResult r = pair_terms(in, old_a, dt);
+          if (i_is_a) {
+            f += r.force_a;
+            t += r.torque_a;
+            store(idj, r.slot);
+          } else {
+            f -= r.force_a;
+            t += r.torque_b;
+            store(idj, negated(r.slot));
+          }
+        });
+        for (int k = 0; k < n_planes; ++k) {
+          const Plane pl = planes[k];
+          const Real dist = dot(xi - pl.point, pl.normal);
+          if (!(dist < ri)) continue;
+          const Material mp = mats[pl.material];
+          PairInput in;
+          in.n = pl.normal;
+          in.un = ri - dist;
+          in.ra = ri;
+          in.rb = 0;
+          in.va = v.vel[i];
+          in.wa = v.omega[i];
+          in.vb = Vec3{};
+          in.wb = Vec3{};
+          in.mstar = v.mass[i];
+          // A plane acts as a sphere of the same radius in the two-spring formula (SPEC §3: r_B := r_A).
+          in.kn = normal_stiffness(mi.young, ri, mp.young, ri);
+          in.ks = shear_stiffness(mi.young, mi.nu, ri, mp.young, mp.nu, ri);
+          in.cn_e = mi.restitution < mp.restitution ? mi.restitution : mp.restitution;
+          in.tan_phi = mi.tan_phi < mp.tan_phi ? mi.tan_phi : mp.tan_phi;
+          in.k_roll = (mi.k_roll + mp.k_roll) / 2;
+          in.k_roll_max = (mi.k_roll_max + mp.k_roll_max) / 2;
+          in.k_twist = (mi.k_twist + mp.k_twist) / 2;
+          in.k_twist_max = (mi.k_twist_max + mp.k_twist_max) / 2;
+          in.rmin = ri;
+          const std::uint32_t partner = plane_partner | static_cast<std::uint32_t>(k);
+          const ContactSlot* s = find_slot(old_row, partner);
+          const PairResult r = pair_terms(in, s ? *s : ContactSlot{}, dt);
+          f += r.force_a;
+          t += r.torque_a;
+          store(partner, r.slot);
+        }
+        v.force[i] = f;
+        v.torque[i] = t;
+      });
+}
+
+// Semi-implicit Euler for translation and rotation; the orientation quaternion is
+// advanced by dq/dt = 1/2 (0, w) q and renormalised.
+void integrate(const DemView& v, Vec3 gravity, Real dt) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        v.vel[i] += (v.force[i] * (1 / v.mass[i]) + gravity) * dt;
+        v.pos[i] += v.vel[i] * dt;
+        const Vec3 w = (v.omega[i] += v.torque[i] * (dt / v.inertia[i]));
+        Real* q = v.quat + 4 * static_cast<std::size_t>(i);
+        const Real h = dt / 2;
+        const Real q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
+        Real n0 = q0 + h * (-w.x * q1 - w.y * q2 - w.z * q3);
+        Real n1 = q1 + h * (w.x * q0 + w.y * q3 - w.z * q2);
+        Real n2 = q2 + h * (-w.x * q3 + w.y * q0 + w.z * q1);
+        Real n3 = q3 + h * (w.x * q2 - w.y * q1 + w.z * q0);
+        const Real l = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2 + n3 * n3);
+        q[0] = n0 / l;
+        q[1] = n1 / l;
+        q[2] = n2 / l;
+        q[3] = n3 / l;
+      });
+}
+
+} // namespace detail
+
+DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi)
+    : materials_host_(std::move(materials)), gravity_(gravity), lo_(lo), hi_(hi) {
+  if (materials_host_.empty()) throw std::invalid_argument("DEM needs at least one material");
+  par::upload(materials_, materials_host_);
+  for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
+  n_planes_ = static_cast<int>(planes.size());
+  par::upload(planes_, planes);
+}
+
+void DemSolver::set_spheres(const std::vector<Sphere>& s) {
+  n_ = static_cast<int>(s.size());
+  std::vector<Vec3> pos, vel, omega;
+  std::vector<Real> quat, radius, mass, inertia;
+  std::vector<std::uint8_t> mat;
+  std::vector<std::uint32_t> id;
+  max_radius_ = 0;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const auto& m = materials_host_.at(static_cast<std::size_t>(s[k].material));
+    pos.push_back(s[k].pos);
+    vel.push_back(s[k].vel);
+    omega.push_back(s[k].omega);
+    quat.insert(quat.end(), {1, 0, 0, 0});
+    radius.push_back(s[k].radius);
+    const Real r = s[k].radius;
+    const Real mk = m.density * Real(4.0 / 3.0 * pi) * r * r * r;
+    mass.push_back(mk);
+    inertia.push_back(Real(0.4) * mk * r * r);
+    mat.push_back(static_cast<std::uint8_t>(s[k].material));
+    id.push_back(static_cast<std::uint32_t>(k));
+    max_radius_ = std::max(max_radius_, r);
+  }
+  par::upload(pos_, pos);
+  par::upload(vel_, vel);
+  par::upload(omega_, omega);
+  par::upload(quat_, quat);
+  par::upload(radius_, radius);
+  par::upload(mass_, mass);
+  par::upload(inertia_, inertia);
+  par::upload(material_, mat);
+  par::upload(id_, id);
+  force_.resize(s.size());
+  torque_.resize(s.size());
+  par::fill(force_, Vec3{});
+  par::fill(torque_, Vec3{});
+  hist_old_.resize(s.size() * max_contacts);
+  hist_new_.resize(s.size() * max_contacts);
+  par::fill(hist_old_, ContactSlot{});
+  grid_.set_spec(neighbour::make_grid(lo_, hi_, 2 * std::max(max_radius_, Real(1e-6))));
+}
+
+DemView DemSolver::view() {
+  return {n_,
+          pos_.data(),
+          vel_.data(),
+          omega_.data(),
+          force_.data(),
+          torque_.data(),
+          quat_.data(),
+          radius_.data(),
+          mass_.data(),
+          inertia_.data(),
+          material_.data(),
+          id_.data(),
+          hist_old_.data(),
+          hist_new_.data()};
+}
+
+Real DemSolver::critical_dt(Real factor) const {
+  const auto mass = par::download(mass_), radius = par::download(radius_);
+  const auto mat = par::download(material_);
+  Real dt = std::numeric_limits<Real>::max();
+  for (std::size_t k = 0; k < mass.size(); ++k) {
+    const auto& m = materials_host_[mat[k]];
+    const Real kn = normal_stiffness(m.young, radius[k], m.young, radius[k]);
+    dt = std::min(dt, std::sqrt(mass[k] / kn));
+  }
+  return factor * dt;
+}
+
+void DemSolver::step(Real dt) {
+  // Sort by cell; history rows travel with their sphere (they are keyed by partner id).
+  grid_.sort(pos_.data(), nullptr, n_);
+  const std::uint32_t* perm = grid_.permutation();
+  par::gather(pos_, tmp3_, perm, n_);
+  par::gather(vel_, tmp3_, perm, n_);
+  par::gather(omega_, tmp3_, perm, n_);
+  par::gather(quat_, tmp1_, perm, n_, 4);
+  par::gather(radius_, tmp1_, perm, n_);
+  par::gather(mass_, tmp1_, perm, n_);
+  par::gather(inertia_, tmp1_, perm, n_);
+  par::gather(material_, tmpb_, perm, n_);
+  par::gather(id_, tmpu_, perm, n_);
+  par::gather(hist_old_, tmph_, perm, n_, max_contacts);
+  grid_.build_cell_start(n_);
+  const DemView v = view();
+  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, 2 * max_radius_, dt);
+  detail::integrate(v, gravity_, dt);
+  hist_old_.swap(hist_new_);
+}
+
+namespace {
+template <class T>
+std::vector<T> by_id(const std::vector<T>& v, const std::vector<std::uint32_t>& id, int block = 1) {
+  std::vector<T> out(v.size());
+  for (std::size_t i = 0; i < id.size(); ++i)
+    for (int b = 0; b < block; ++b) out[id[i] * block + b] = v[i * block + b];
+  return out;
+}
+} // namespace
+
+std::vector<Sphere> DemSolver::spheres() const {
+  const auto id = par::download(id_);
+  const auto pos = by_id(par::download(pos_), id), vel = by_id(par::download(vel_), id),
+             omega = by_id(par::download(omega_), id);
+  const auto radius = by_id(par::download(radius_), id);
+  const auto mat = by_id(par::download(material_), id);
+  std::vector<Sphere> out(id.size());
+  for (std::size_t k = 0; k < id.size(); ++k) out[k] = {pos[k], vel[k], omega[k], radius[k], mat[k]};
+  return out;
+}
+std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_), par::download(id_)); }
+std::vector<Vec3> DemSolver::torques() const { return by_id(par::download(torque_), par::download(id_)); }
+std::vector<Real> DemSolver::quaternions() const { return by_id(par::download(quat_), par::download(id_), 4); }
+
+} // namespace surge::dem

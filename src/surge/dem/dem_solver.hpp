@@ -1,0 +1,94 @@
+// DEM spheres (SPEC §3): sphere–sphere and sphere–plane contacts with per-contact
+// history (shear force, rolling and twisting rotation), Newton–Euler integration with
+// an orientation quaternion. Each sphere computes all of its own contacts and writes
+// only its own force, torque and history row; the pair terms are evaluated in a
+// canonical order (lower id first) and negated on the other side, so both sides agree
+// bit for bit and results do not depend on the thread count.
+//
+// Not yet here (the DEM issue): bonds, triangle-mesh walls, case files, output.
+#pragma once
+#include "surge/dem/contact_linear_spring.hpp"
+#include "surge/neighbour/uniform_grid.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace surge::dem {
+
+struct Material {
+  Real density = 2500;
+  Real young = Real(1e6);     // E [Pa] (stiffness per length in the two-spring formula)
+  Real nu = Real(0.2);       // shear-to-normal stiffness ratio
+  Real tan_phi = Real(0.577); // friction coefficient tan(phi)
+  Real restitution = Real(0.5);
+  Real k_roll = 0, k_roll_max = 0;   // rolling stiffness factor and cap factor
+  Real k_twist = 0, k_twist_max = 0; // twisting
+};
+
+// An infinite plane wall: points x with dot(x - point, normal) >= 0 are inside.
+struct Plane {
+  Vec3 point{}, normal{0, 0, 1};
+  int material = 0;
+};
+
+struct Sphere {
+  Vec3 pos{}, vel{}, omega{};
+  Real radius = 0.01f;
+  int material = 0;
+};
+
+inline constexpr int max_contacts = 16; // history slots per sphere
+inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
+inline constexpr std::uint32_t plane_partner = 0x80000000U; // partner id of plane k: plane_partner | k
+
+// One history slot: the partner and the A-side (lower id) springs of that contact.
+struct ContactSlot {
+  std::uint32_t partner = no_partner;
+  Vec3 shear{}; // shear force on the canonical A sphere
+  Vec3 roll{};  // accumulated rolling rotation (A relative to B)
+  Vec3 twist{}; // accumulated twisting rotation
+};
+
+struct DemView {
+  int n = 0;
+  Vec3 *pos, *vel, *omega, *force, *torque;
+  Real* quat; // 4 per sphere (w, x, y, z)
+  Real *radius, *mass, *inertia;
+  std::uint8_t* material;
+  std::uint32_t* id;
+  ContactSlot *hist_old, *hist_new;
+};
+
+class DemSolver {
+public:
+  DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi);
+  void set_spheres(const std::vector<Sphere>& s);
+  // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).
+  [[nodiscard]] Real critical_dt(Real factor) const;
+  void step(Real dt);
+  // Current state by sphere id (host copies).
+  [[nodiscard]] std::vector<Sphere> spheres() const;
+  [[nodiscard]] std::vector<Vec3> forces() const; // contact forces of the last step, by id
+  [[nodiscard]] std::vector<Vec3> torques() const;
+  [[nodiscard]] std::vector<Real> quaternions() const; // 4 per sphere, by id
+  [[nodiscard]] int size() const { return n_; }
+  DemView view();
+
+private:
+  std::vector<Material> materials_host_;
+  par::Buffer<Material> materials_;
+  par::Buffer<Plane> planes_;
+  int n_planes_ = 0;
+  Vec3 gravity_{};
+  neighbour::UniformGrid grid_;
+  Vec3 lo_{}, hi_{};
+  int n_ = 0;
+  Real max_radius_ = 0;
+  par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;
+  par::Buffer<Real> quat_, radius_, mass_, inertia_, tmp1_;
+  par::Buffer<std::uint8_t> material_, tmpb_;
+  par::Buffer<std::uint32_t> id_, tmpu_;
+  par::Buffer<ContactSlot> hist_old_, hist_new_, tmph_;
+};
+
+} // namespace surge::dem

@@ -1,0 +1,159 @@
+// The DEM solver against closed forms: two-sphere impact, a sphere rolling down an
+// incline (a = 5/7 g sin theta), rolling resistance stopping a sphere (stopping
+// distance v0^2 / (2 * 5/7 k_max g)); momentum conservation; thread independence.
+#include "dem_closed_form.hpp"
+
+#include "surge/dem/dem_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace surge;
+using namespace surge::dem;
+
+namespace {
+const Vec3 lo{-1, -1, -1}, hi{1, 1, 1};
+Material grains(Real e) {
+  Material m;
+  m.density = 2500;
+  m.young = 1e6f;
+  m.nu = 0.2f;
+  m.tan_phi = std::tan(Real(30 * pi / 180));
+  m.restitution = e;
+  return m;
+}
+} // namespace
+
+TEST(DemSolver, HeadOnImpactMatchesTheClippedOscillator) {
+  for (Real e : {0.5f, 0.9f}) {
+    DemSolver s({grains(e)}, {}, Vec3{}, lo, hi);
+    const Real r = 0.01f;
+    s.set_spheres({{{-r, 0, 0}, {0.5f, 0, 0}, {}, r, 0}, {{r, 0, 0}, {-0.5f, 0, 0}, {}, r, 0}});
+    const Real dt = s.critical_dt(0.01f);
+    double t = 0, t_on = -1, t_off = -1;
+    for (int k = 0; k < 200000 && t_off < 0; ++k) {
+      s.step(dt);
+      t += dt;
+      const auto sp = s.spheres();
+      const bool touching = sp[1].pos.x - sp[0].pos.x < 2 * r;
+      if (touching && t_on < 0) t_on = t;
+      if (!touching && t_on >= 0) t_off = t;
+    }
+    const auto sp = s.spheres();
+    const test::Impact cf = test::closed_form(e, 1.0);
+    const double e_sim = (sp[1].vel.x - sp[0].vel.x) / 1.0;
+    // Tolerance 2 % (the issue's); float state and a step of 1 % of sqrt(m/k_n).
+    EXPECT_NEAR(e_sim, cf.restitution, 0.02 * cf.restitution) << "e = " << e;
+    EXPECT_NEAR(t_off - t_on, cf.duration, 0.02 * cf.duration) << "e = " << e;
+    EXPECT_NEAR(sp[0].vel.x + sp[1].vel.x, 0.0f, 1e-6f); // equal masses: momentum stays zero
+  }
+}
+
+TEST(DemSolver, MomentumConservedInACollidingCloud) {
+  // 343 touching spheres with random velocities, no gravity, no walls: every contact
+  // force is applied with opposite signs to its two spheres, so momentum changes only
+  // by round-off (float, relative 1e-5 of sum |m v|).
+  DemSolver s({grains(0.5f)}, {}, Vec3{}, lo, hi);
+  std::vector<Sphere> sp;
+  std::mt19937 rng(3);
+  std::normal_distribution<float> nd(0, 0.3f);
+  for (int k = 0; k < 7; ++k)
+    for (int j = 0; j < 7; ++j)
+      for (int i = 0; i < 7; ++i)
+        sp.push_back({{0.0199f * static_cast<Real>(i), 0.0199f * static_cast<Real>(j), 0.0199f * static_cast<Real>(k)},
+                      {nd(rng), nd(rng), nd(rng)},
+                      {nd(rng) * 10, nd(rng) * 10, nd(rng) * 10},
+                      0.01f,
+                      0});
+  s.set_spheres(sp);
+  auto momentum = [&] {
+    Vec3d p{};
+    double scale = 0;
+    for (const auto& x : s.spheres()) {
+      p += Vec3d(x.vel);
+      scale += norm(Vec3d(x.vel));
+    }
+    return std::make_pair(p, scale);
+  };
+  const auto [p0, scale] = momentum();
+  const Real dt = s.critical_dt(0.1f);
+  for (int k = 0; k < 300; ++k) s.step(dt);
+  const auto [p1, unused] = momentum();
+  EXPECT_LT(norm(p1 - p0) / scale, 1e-5);
+  EXPECT_GT(norm(Vec3d(s.spheres()[0].vel) - Vec3d(sp[0].vel)), 1e-3); // they did collide
+}
+
+TEST(DemSolver, SameResultOnOneAndTwoThreads) {
+  auto run = [](int threads) {
+    par::set_threads(threads);
+    DemSolver s({grains(0.5f)}, {{{0, 0, -0.2f}, {0, 0, 1}, 0}}, Vec3{0, 0, -9.81f}, lo, hi);
+    std::vector<Sphere> sp;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-0.001f, 0.001f);
+    for (int k = 0; k < 6; ++k)
+      for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i)
+          sp.push_back({{0.02f * static_cast<Real>(i) + u(rng), 0.02f * static_cast<Real>(j) + u(rng),
+                         -0.19f + 0.02f * static_cast<Real>(k)},
+                        {},
+                        {},
+                        0.01f,
+                        0});
+    s.set_spheres(sp);
+    const Real dt = s.critical_dt(0.1f);
+    for (int k = 0; k < 500; ++k) s.step(dt);
+    return s.spheres();
+  };
+  const auto a = run(1), b = run(2);
+  par::set_threads(2);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].pos.x, b[i].pos.x) << i;
+    ASSERT_EQ(a[i].pos.z, b[i].pos.z) << i;
+    ASSERT_EQ(a[i].omega.y, b[i].omega.y) << i;
+  }
+}
+
+TEST(DemSolver, SphereRollsDownAnInclineAtFiveSeventhsGSinTheta) {
+  const Real theta = Real(20 * pi / 180), g = 9.81f, r = 0.01f;
+  const Vec3 n{-std::sin(theta), 0, std::cos(theta)}; // plane z = x tan(theta) through the origin
+  DemSolver s({grains(0.5f)}, {{{0, 0, 0}, n, 0}}, Vec3{0, 0, -g}, lo, hi);
+  s.set_spheres({{n * r, {}, {}, r, 0}});
+  const Real dt = s.critical_dt(0.05f);
+  const Vec3 down{-std::cos(theta), 0, -std::sin(theta)}; // downhill is -x
+  double t = 0, v1 = 0, t1 = 0;
+  for (int k = 0; t < 0.3; ++k) {
+    s.step(dt);
+    t += dt;
+    if (t1 == 0 && t >= 0.1) {
+      t1 = t;
+      v1 = dot(Vec3d(s.spheres()[0].vel), Vec3d(down));
+    }
+  }
+  const double v2 = dot(Vec3d(s.spheres()[0].vel), Vec3d(down));
+  const double a = (v2 - v1) / (t - t1);
+  const double expected = 5.0 / 7.0 * g * std::sin(theta);
+  EXPECT_NEAR(a, expected, 0.02 * expected); // 2 %, the tolerance
+  // Rolling without slip: w r = v.
+  EXPECT_NEAR(std::fabs(s.spheres()[0].omega.y) * r, v2, 0.02 * v2);
+}
+
+TEST(DemSolver, RollingResistanceStopsASphereAtTheClosedFormDistance) {
+  // On a flat plane, a rolling sphere with rolling resistance at its cap decelerates at
+  // a = M_max / (r (m + I/r^2)) = 5/7 k_max g; it stops after v0^2 / (2 a).
+  Material m = grains(0.5f);
+  m.k_roll = 1.0f;
+  m.k_roll_max = 0.05f;
+  const Real g = 9.81f, r = 0.01f, v0 = 0.2f;
+  DemSolver s({m}, {{{0, 0, 0}, {0, 0, 1}, 0}}, Vec3{0, 0, -g}, lo, hi);
+  s.set_spheres({{{0, 0, r - 2.05e-5f}, {v0, 0, 0}, {0, v0 / r, 0}, r, 0}}); // resting overlap m g / k_n
+  const Real dt = s.critical_dt(0.05f);
+  for (int k = 0; k < 200000; ++k) {
+    s.step(dt);
+    if (std::fabs(s.spheres()[0].vel.x) < 1e-4f && k > 100) break;
+  }
+  const double expected = v0 * v0 / (2 * 5.0 / 7.0 * m.k_roll_max * g);
+  EXPECT_NEAR(s.spheres()[0].pos.x, expected, 0.05 * expected); // 5 %: the spring phase at start and end
+  EXPECT_LT(std::fabs(s.spheres()[0].vel.x), 1e-3f);
+}
