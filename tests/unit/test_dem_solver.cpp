@@ -157,3 +157,58 @@ TEST(DemSolver, RollingResistanceStopsASphereAtTheClosedFormDistance) {
   EXPECT_NEAR(s.spheres()[0].pos.x, expected, 0.05 * expected); // 5 %: the spring phase at start and end
   EXPECT_LT(std::fabs(s.spheres()[0].vel.x), 1e-3f);
 }
+
+namespace {
+// A bonded pair of touching spheres (r = 1 cm, no damping) flung apart at 0.6 m/s (along x) or
+// sheared (along y) at 2 m/s (the spheres also spin up, which slows the shear), enough
+// for the bond spring to exceed its strength; the step (0.2 % of sqrt(m/k_n)) makes the
+// force grow by < 0.7 % of the limit per step. Returns the largest bond force before it broke and the number of broken
+// bonds.
+struct BondTest {
+  double max_force = 0;
+  long broken = 0;
+  long bonds = 0;
+};
+BondTest load_bond(bool shear) {
+  Material m = grains(1.0f);
+  m.bonded = true;
+  m.bond_cn = 2e4f; // C_n r'^2 = 2 N
+  m.bond_cs = 1e4f; // C_s r'^2 = 1 N
+  const Real r = 0.01f, v = shear ? 1.0f : 0.3f;
+  DemSolver s({m}, {}, Vec3{}, lo, hi);
+  const Vec3 dv = shear ? Vec3{0, v, 0} : Vec3{v, 0, 0};
+  s.set_spheres({{{-r, 0, 0}, dv * -1.0f, {}, r, 0}, {{r, 0, 0}, dv, {}, r, 0}});
+  BondTest out;
+  out.bonds = s.bond_touching(1e-6f);
+  const Real dt = s.critical_dt(0.002f);
+  for (int k = 0; k < 20000 && s.broken_bonds() == 0; ++k) {
+    s.step(dt);
+    const Vec3 f = s.forces()[1];
+    if (s.broken_bonds() > 0) break; // the force of the breaking step is already frictional
+    const auto sp = s.spheres();
+    const Vec3 n = (sp[1].pos - sp[0].pos) * (1 / norm(sp[1].pos - sp[0].pos));
+    const double fn = dot(f, n); // > 0: tension on sphere 1
+    const double fs = norm(f - n * static_cast<Real>(fn));
+    // Shear: the load relative to the limit |F_n| tan(phi) + C_s r'^2 (the sheared pair also
+    // stretches a little, so |F_n| is not zero). Tension: the normal force.
+    out.max_force = std::max(out.max_force, shear ? fs / (std::fabs(fn) * static_cast<double>(m.tan_phi) + 1.0) : -fn);
+  }
+  out.broken = s.broken_bonds();
+  return out;
+}
+} // namespace
+
+TEST(DemSolver, BondBreaksInTensionAtCnR2) {
+  const BondTest b = load_bond(false);
+  EXPECT_EQ(b.bonds, 1);
+  EXPECT_EQ(b.broken, 1);
+  EXPECT_NEAR(b.max_force, 2.0, 0.01 * 2.0); // 1 %, the tolerance
+}
+
+TEST(DemSolver, BondBreaksInShearAtItsShearLimit) {
+  // max_force here is the largest |F_s| / (|F_n| tan(phi) + C_s r'^2): it must reach 1
+  // (within 1 %) and never exceed it.
+  const BondTest b = load_bond(true);
+  EXPECT_EQ(b.broken, 1);
+  EXPECT_NEAR(b.max_force, 1.0, 0.01 * 1.0);
+}

@@ -16,6 +16,7 @@ struct PairResult {
   Vec3 torque_a;    // about A's centre
   Vec3 torque_b;    // about B's centre (zero for planes)
   ContactSlot slot; // A-side history after this step
+  bool broke = false;
 };
 
 struct PairInput {
@@ -26,7 +27,8 @@ struct PairInput {
   Real mstar, kn, ks, cn_e; // reduced mass, stiffnesses, restitution
   Real tan_phi;
   Real k_roll, k_roll_max, k_twist, k_twist_max;
-  Real rmin; // r' = min(r_A, r_B)
+  Real rmin;             // r' = min(r_A, r_B)
+  Real bond_cn, bond_cs; // bond strengths (used while the slot is bonded)
 };
 
 SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& old, Real dt) {
@@ -36,13 +38,29 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
   const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
   const Real dun = -dot(vrel, n);
   const NormalSpringDashpot law(in.kn, in.mstar, in.cn_e);
-  const Real fn = law.force(in.un, dun, false);
-  const ShearUpdate sh = shear_force(old.shear, n, vrel * dt, in.ks, fn * in.tan_phi);
+  bool bonded = old.bonded != 0, broke = false;
+  Real fn = law.force(in.un, dun, bonded);
+  const Real area = in.rmin * in.rmin;
+  if (bonded && -fn > in.bond_cn * area) { // tension beyond C_n r'^2
+    bonded = false;
+    broke = true;
+    fn = law.force(in.un, dun, false);
+  }
+  const Real fn_abs = fn < 0 ? -fn : fn;
+  ShearUpdate sh = shear_force(old.shear, n, vrel * dt, in.ks, fn_abs * in.tan_phi + (bonded ? in.bond_cs * area : 0));
+  if (bonded && sh.slipped) { // shear beyond |F_n| tan(phi) + C_s r'^2: the bond breaks, friction remains
+    bonded = false;
+    broke = true;
+    fn = law.force(in.un, dun, false);
+    sh = shear_force(old.shear, n, vrel * dt, in.ks, fn * in.tan_phi);
+  }
   const Vec3 dtheta = (in.wa - in.wb) * dt;
   const Vec3 droll = tangential(dtheta, n);
   const Vec3 dtwist = n * dot(dtheta, n);
   const Real kr = in.k_roll * in.rmin * in.rmin * in.ks, kt = in.k_twist * in.rmin * in.rmin * in.ks;
   PairResult r;
+  r.broke = broke;
+  r.slot.bonded = bonded ? 1U : 0U;
   r.slot.shear = sh.force;
   Vec3 m_roll{}, m_twist{};
   if (kr > 0) {
@@ -60,6 +78,23 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
   r.torque_a = cross(ca, sh.force) + m_roll + m_twist;
   r.torque_b = cross(cb, sh.force * Real(-1)) - m_roll - m_twist;
   return r;
+}
+
+// Pair properties from the two materials and radii (a plane passes its sphere's radius
+// as rb: it acts as a sphere of the same radius in the two-spring formula, SPEC §3).
+SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
+  in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
+  in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
+  in.cn_e = ma.restitution < mb.restitution ? ma.restitution : mb.restitution;
+  in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
+  in.k_roll = (ma.k_roll + mb.k_roll) / 2;
+  in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
+  in.k_twist = (ma.k_twist + mb.k_twist) / 2;
+  in.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
+  in.rmin = ra < rb ? ra : rb;
+  const bool bondable = ma.bonded && mb.bonded;
+  in.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
+  in.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
 }
 
 SURGE_HD inline const ContactSlot* find_slot(const ContactSlot* row, std::uint32_t partner) {
@@ -84,6 +119,7 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         ContactSlot* new_row = v.hist_new + static_cast<std::size_t>(i) * max_contacts;
         for (int k = 0; k < max_contacts; ++k) new_row[k] = ContactSlot{};
         int used = 0;
+        std::uint32_t broken = 0;
         Vec3 f{}, t{};
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
@@ -101,8 +137,10 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
           const Real rj = v.radius[j];
           const Vec3 d0 = xi - v.pos[j];
           const Real dist = norm(d0);
-          if (!(dist < ri + rj) || dist <= 0) return;
           const std::uint32_t idj = v.id[j];
+          const ContactSlot* s = find_slot(old_row, idj);
+          const bool held = s != nullptr && s->bonded != 0; // a bond acts across a gap too
+          if ((!(dist < ri + rj) && !held) || dist <= 0) return;
           const bool i_is_a = idi < idj;
           const int a = i_is_a ? i : j, b = i_is_a ? j : i;
           const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
@@ -117,19 +155,11 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
           in.vb = v.vel[b];
           in.wb = v.omega[b];
           in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          in.kn = normal_stiffness(ma.young, in.ra, mb.young, in.rb);
-          in.ks = shear_stiffness(ma.young, ma.nu, in.ra, mb.young, mb.nu, in.rb);
-          in.cn_e = ma.restitution < mb.restitution ? ma.restitution : mb.restitution;
-          in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
-          in.k_roll = (ma.k_roll + mb.k_roll) / 2;
-          in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
-          in.k_twist = (ma.k_twist + mb.k_twist) / 2;
-          in.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
-          in.rmin = in.ra < in.rb ? in.ra : in.rb;
-          const ContactSlot* s = find_slot(old_row, idj);
+          mix_materials(ma, mb, in.ra, in.rb, in);
           ContactSlot old_a{};
           if (s) old_a = i_is_a ? *s : negated(*s);
           const PairResult r = pair_terms(in, old_a, dt);
+          if (r.broke) ++broken;
           if (i_is_a) {
             f += r.force_a;
             t += r.torque_a;
@@ -155,16 +185,9 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
           in.vb = Vec3{};
           in.wb = Vec3{};
           in.mstar = v.mass[i];
-          // A plane acts as a sphere of the same radius in the two-spring formula (SPEC §3: r_B := r_A).
-          in.kn = normal_stiffness(mi.young, ri, mp.young, ri);
-          in.ks = shear_stiffness(mi.young, mi.nu, ri, mp.young, mp.nu, ri);
-          in.cn_e = mi.restitution < mp.restitution ? mi.restitution : mp.restitution;
-          in.tan_phi = mi.tan_phi < mp.tan_phi ? mi.tan_phi : mp.tan_phi;
-          in.k_roll = (mi.k_roll + mp.k_roll) / 2;
-          in.k_roll_max = (mi.k_roll_max + mp.k_roll_max) / 2;
-          in.k_twist = (mi.k_twist + mp.k_twist) / 2;
-          in.k_twist_max = (mi.k_twist_max + mp.k_twist_max) / 2;
-          in.rmin = ri;
+          Material unbondable = mp;
+          unbondable.bonded = false;
+          mix_materials(mi, unbondable, ri, ri, in);
           const std::uint32_t partner = plane_partner | static_cast<std::uint32_t>(k);
           const ContactSlot* s = find_slot(old_row, partner);
           const PairResult r = pair_terms(in, s ? *s : ContactSlot{}, dt);
@@ -174,6 +197,26 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         }
         v.force[i] = f;
         v.torque[i] = t;
+        v.broken[i] += broken;
+      });
+}
+
+// Bonds each sphere to every neighbour of a bonded material closer than `gap`.
+void bond(const DemView& v, const neighbour::GridView& g, const Material* mats, Real reach, Real gap) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        ContactSlot* row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
+        if (!mats[v.material[i]].bonded) return;
+        int used = 0;
+        while (used < max_contacts && row[used].partner != no_partner) ++used;
+        neighbour::for_each_neighbour(g, v.pos[i], reach * reach, [&](int j, const Vec3& d, Real) {
+          if (j == i || !mats[v.material[j]].bonded || used >= max_contacts) return;
+          if (norm(d) >= v.radius[i] + v.radius[j] + gap) return;
+          ContactSlot s{};
+          s.partner = v.id[j];
+          s.bonded = 1;
+          row[used++] = s;
+        });
       });
 }
 
@@ -246,10 +289,12 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   torque_.resize(s.size());
   par::fill(force_, Vec3{});
   par::fill(torque_, Vec3{});
+  broken_.resize(s.size());
+  par::fill(broken_, 0U);
   hist_old_.resize(s.size() * max_contacts);
   hist_new_.resize(s.size() * max_contacts);
   par::fill(hist_old_, ContactSlot{});
-  grid_.set_spec(neighbour::make_grid(lo_, hi_, 2 * std::max(max_radius_, Real(1e-6))));
+  grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(reach(), Real(1e-6))));
 }
 
 DemView DemSolver::view() {
@@ -266,7 +311,8 @@ DemView DemSolver::view() {
           material_.data(),
           id_.data(),
           hist_old_.data(),
-          hist_new_.data()};
+          hist_new_.data(),
+          broken_.data()};
 }
 
 Real DemSolver::critical_dt(Real factor) const {
@@ -281,8 +327,8 @@ Real DemSolver::critical_dt(Real factor) const {
   return factor * dt;
 }
 
-void DemSolver::step(Real dt) {
-  // Sort by cell; history rows travel with their sphere (they are keyed by partner id).
+void DemSolver::sort_spheres() {
+  // History rows travel with their sphere (they are keyed by partner id).
   grid_.sort(pos_.data(), nullptr, n_);
   const std::uint32_t* perm = grid_.permutation();
   par::gather(pos_, tmp3_, perm, n_);
@@ -294,10 +340,15 @@ void DemSolver::step(Real dt) {
   par::gather(inertia_, tmp1_, perm, n_);
   par::gather(material_, tmpb_, perm, n_);
   par::gather(id_, tmpu_, perm, n_);
+  par::gather(broken_, tmpu_, perm, n_);
   par::gather(hist_old_, tmph_, perm, n_, max_contacts);
   grid_.build_cell_start(n_);
+}
+
+void DemSolver::step(Real dt) {
+  sort_spheres();
   const DemView v = view();
-  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, 2 * max_radius_, dt);
+  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, reach(), dt);
   detail::integrate(v, gravity_, dt);
   hist_old_.swap(hist_new_);
 }
@@ -311,6 +362,22 @@ std::vector<T> by_id(const std::vector<T>& v, const std::vector<std::uint32_t>& 
   return out;
 }
 } // namespace
+
+long DemSolver::bond_touching(Real gap) {
+  sort_spheres();
+  const DemView v = view();
+  detail::bond(v, grid_.view(v.pos), materials_.data(), reach(), gap);
+  const auto h = par::download(hist_old_);
+  long bonds = 0;
+  for (const auto& s : h) bonds += s.bonded ? 1 : 0;
+  return bonds / 2;
+}
+
+long DemSolver::broken_bonds() const {
+  long b = 0;
+  for (auto x : par::download(broken_)) b += x;
+  return b / 2;
+}
 
 std::vector<Sphere> DemSolver::spheres() const {
   const auto id = par::download(id_);

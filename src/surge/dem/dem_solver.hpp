@@ -5,7 +5,7 @@
 // canonical order (lower id first) and negated on the other side, so both sides agree
 // bit for bit and results do not depend on the thread count.
 //
-// Not yet here (the DEM issue): bonds, triangle-mesh walls, case files, output.
+// Not yet here (the DEM issue): triangle-mesh walls, sphere packs, case files, output.
 #pragma once
 #include "surge/dem/contact_linear_spring.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
@@ -18,11 +18,14 @@ namespace surge::dem {
 struct Material {
   Real density = 2500;
   Real young = Real(1e6);     // E [Pa] (stiffness per length in the two-spring formula)
-  Real nu = Real(0.2);       // shear-to-normal stiffness ratio
+  Real nu = Real(0.2);        // shear-to-normal stiffness ratio
   Real tan_phi = Real(0.577); // friction coefficient tan(phi)
   Real restitution = Real(0.5);
   Real k_roll = 0, k_roll_max = 0;   // rolling stiffness factor and cap factor
   Real k_twist = 0, k_twist_max = 0; // twisting
+  bool bonded = false;               // touching spheres of two bonded materials are bonded at the start (CFM)
+  Real bond_cn = 0;                  // bond tensile strength C_n [Pa]: breaks beyond C_n r'^2 in tension
+  Real bond_cs = 0;                  // bond shear strength C_s [Pa]: breaks beyond |F_n| tan(phi) + C_s r'^2
 };
 
 // An infinite plane wall: points x with dot(x - point, normal) >= 0 are inside.
@@ -44,9 +47,10 @@ inline constexpr std::uint32_t plane_partner = 0x80000000U; // partner id of pla
 // One history slot: the partner and the A-side (lower id) springs of that contact.
 struct ContactSlot {
   std::uint32_t partner = no_partner;
-  Vec3 shear{}; // shear force on the canonical A sphere
-  Vec3 roll{};  // accumulated rolling rotation (A relative to B)
-  Vec3 twist{}; // accumulated twisting rotation
+  Vec3 shear{};             // shear force on the canonical A sphere
+  Vec3 roll{};              // accumulated rolling rotation (A relative to B)
+  Vec3 twist{};             // accumulated twisting rotation
+  std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
 };
 
 struct DemView {
@@ -57,12 +61,18 @@ struct DemView {
   std::uint8_t* material;
   std::uint32_t* id;
   ContactSlot *hist_old, *hist_new;
+  std::uint32_t* broken; // bonds this sphere has lost so far (each bond counts on both spheres)
 };
 
 class DemSolver {
 public:
   DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi);
   void set_spheres(const std::vector<Sphere>& s);
+  // Bonds every pair of spheres of bonded materials whose gap is below `gap` (SPEC §3,
+  // CFM); call once after set_spheres. Returns the number of bonds.
+  long bond_touching(Real gap);
+  // Bonds broken since the start.
+  [[nodiscard]] long broken_bonds() const;
   // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).
   [[nodiscard]] Real critical_dt(Real factor) const;
   void step(Real dt);
@@ -75,6 +85,10 @@ public:
   DemView view();
 
 private:
+  void sort_spheres();
+  // Neighbour search radius: touching spheres, and bonded ones pulled slightly apart.
+  [[nodiscard]] Real reach() const { return Real(2.1) * max_radius_; }
+
   std::vector<Material> materials_host_;
   par::Buffer<Material> materials_;
   par::Buffer<Plane> planes_;
@@ -87,7 +101,7 @@ private:
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;
   par::Buffer<Real> quat_, radius_, mass_, inertia_, tmp1_;
   par::Buffer<std::uint8_t> material_, tmpb_;
-  par::Buffer<std::uint32_t> id_, tmpu_;
+  par::Buffer<std::uint32_t> id_, tmpu_, broken_;
   par::Buffer<ContactSlot> hist_old_, hist_new_, tmph_;
 };
 
