@@ -212,3 +212,48 @@ TEST(DemSolver, BondBreaksInShearAtItsShearLimit) {
   EXPECT_EQ(b.broken, 1);
   EXPECT_NEAR(b.max_force, 1.0, 0.01 * 1.0);
 }
+
+namespace {
+// Runs a sphere (r = 1 cm) on a flat triangle mesh in the plane z = 0 and returns
+// the largest deviation of the contact force's z-component from m g over the run.
+double worst_normal_force_error(const std::vector<WallTriangle>& tris, Vec3 start, Vec3 vel, int steps) {
+  const Real g = 9.81f, r = 0.01f;
+  DemSolver s({grains(0.5f)}, {}, Vec3{0, 0, -g}, lo, hi);
+  s.set_wall_triangles(tris);
+  const Real mass = 2500 * Real(4.0 / 3.0 * pi) * r * r * r;
+  const Real kn = normal_stiffness(1e6f, r, 1e6f, r);
+  start.z = r - mass * g / kn;                                         // resting overlap m g / k_n: no bounce
+  s.set_spheres({{start, vel, Vec3{-vel.y / r, vel.x / r, 0}, r, 0}}); // rolling without slip
+  const Real dt = s.critical_dt(0.05f);
+  double worst = 0;
+  for (int k = 0; k < steps; ++k) {
+    s.step(dt);
+    worst = std::max(worst, std::fabs(static_cast<double>(s.forces()[0].z) / (mass * g) - 1.0));
+  }
+  return worst;
+}
+} // namespace
+
+TEST(DemSolver, SphereRollingAcrossASharedEdgeFeelsOneContinuousNormalForce) {
+  // A square split along its diagonal; the sphere rolls across the diagonal edge. Two
+  // contacts there would double the normal force; the tolerance (2 % of m g) allows the
+  // small spring oscillation only.
+  const std::vector<WallTriangle> quad = {{{-0.1f, -0.1f, 0}, {0.1f, -0.1f, 0}, {0.1f, 0.1f, 0}, 0, 0},
+                                          {{-0.1f, -0.1f, 0}, {0.1f, 0.1f, 0}, {-0.1f, 0.1f, 0}, 0, 0}};
+  // 0.3 m/s along x from x = -0.03, y = 0.01: crosses the diagonal x = y at x = 0.01 m.
+  EXPECT_LT(worst_normal_force_error(quad, {-0.03f, 0.01f, 0}, {0.3f, 0, 0}, 2000), 0.02);
+}
+
+TEST(DemSolver, SphereOnAMeshVertexIsHeldOnce) {
+  // Six triangles meeting at the origin, the sphere resting right above the shared vertex.
+  std::vector<WallTriangle> fan;
+  for (int k = 0; k < 6; ++k) {
+    const Real a0 = Real(k * pi / 3), a1 = Real((k + 1) * pi / 3);
+    fan.push_back({{0, 0, 0},
+                   {0.05f * std::cos(a0), 0.05f * std::sin(a0), 0},
+                   {0.05f * std::cos(a1), 0.05f * std::sin(a1), 0},
+                   0,
+                   0});
+  }
+  EXPECT_LT(worst_normal_force_error(fan, {0, 0, 0}, {0, 0, 0}, 1000), 0.02);
+}

@@ -1,5 +1,7 @@
 #include "surge/dem/dem_solver.hpp"
 
+#include "surge/geometry/closest_point.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -111,8 +113,46 @@ SURGE_HD inline ContactSlot negated(const ContactSlot& s) {
   return o;
 }
 
+// The wall triangles sphere (x, r) touches, one per point of contact: face contacts
+// first; an edge or vertex contact is dropped when an accepted triangle already
+// contains its point (the sphere is over that triangle's face, or the same edge or
+// vertex was accepted from a neighbouring triangle). Returns the count.
+struct WallCandidate {
+  int tri;
+  Vec3 point;
+  Real dist;
+  bool face;
+};
+SURGE_HD inline int wall_contacts(const WallTriangle* tris, int n_tris, const Vec3& x, Real r, WallCandidate* out) {
+  WallCandidate cand[max_wall_candidates];
+  int nc = 0;
+  for (int t = 0; t < n_tris && nc < max_wall_candidates; ++t) {
+    const WallTriangle& tr = tris[t];
+    const auto cp = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, x);
+    const Real d = norm(x - cp.point);
+    if (!(d < r) || d <= 0) continue;
+    cand[nc++] = {t, cp.point, d, cp.region == geometry::Region::Face};
+  }
+  const Real tol = Real(1e-4) * r;
+  int n = 0;
+  for (int pass = 0; pass < 2; ++pass) { // faces, then edges and vertices
+    for (int k = 0; k < nc; ++k) {
+      if (cand[k].face != (pass == 0)) continue;
+      bool keep = true;
+      for (int a = 0; a < n && keep; ++a) {
+        if (tris[out[a].tri].mesh != tris[cand[k].tri].mesh) continue;
+        const WallTriangle& ta = tris[out[a].tri];
+        const Vec3 on_a = geometry::closest_point_on_triangle(ta.a, ta.b, ta.c, cand[k].point).point;
+        if (norm(on_a - cand[k].point) < tol) keep = false; // same point, or on an accepted triangle
+      }
+      if (keep) out[n++] = cand[k];
+    }
+  }
+  return n;
+}
+
 void contacts(const DemView& v, const neighbour::GridView& g, const Material* mats, const Plane* planes, int n_planes,
-              Real reach, Real dt) {
+              const WallTriangle* tris, int n_tris, Real reach, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         const ContactSlot* old_row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
@@ -170,14 +210,11 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
             store(idj, negated(r.slot));
           }
         });
-        for (int k = 0; k < n_planes; ++k) {
-          const Plane pl = planes[k];
-          const Real dist = dot(xi - pl.point, pl.normal);
-          if (!(dist < ri)) continue;
-          const Material mp = mats[pl.material];
+        // A wall contact: unit normal from the wall to the sphere, overlap, partner id, material.
+        auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
           PairInput in;
-          in.n = pl.normal;
-          in.un = ri - dist;
+          in.n = n;
+          in.un = un;
           in.ra = ri;
           in.rb = 0;
           in.va = v.vel[i];
@@ -185,15 +222,26 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
           in.vb = Vec3{};
           in.wb = Vec3{};
           in.mstar = v.mass[i];
-          Material unbondable = mp;
+          Material unbondable = mats[material];
           unbondable.bonded = false;
           mix_materials(mi, unbondable, ri, ri, in);
-          const std::uint32_t partner = plane_partner | static_cast<std::uint32_t>(k);
           const ContactSlot* s = find_slot(old_row, partner);
           const PairResult r = pair_terms(in, s ? *s : ContactSlot{}, dt);
           f += r.force_a;
           t += r.torque_a;
           store(partner, r.slot);
+        };
+        for (int k = 0; k < n_planes; ++k) {
+          const Plane pl = planes[k];
+          const Real dist = dot(xi - pl.point, pl.normal);
+          if (dist < ri) wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material);
+        }
+        if (n_tris > 0) {
+          WallCandidate touched[max_wall_candidates];
+          const int nt = wall_contacts(tris, n_tris, xi, ri, touched);
+          for (int k = 0; k < nt; ++k)
+            wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
+                 triangle_partner | static_cast<std::uint32_t>(touched[k].tri), tris[touched[k].tri].material);
         }
         v.force[i] = f;
         v.torque[i] = t;
@@ -254,7 +302,16 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
   par::upload(planes_, planes);
 }
 
+void DemSolver::set_wall_triangles(const std::vector<WallTriangle>& t) {
+  for (const auto& x : t)
+    if (x.material < 0 || x.material >= static_cast<int>(materials_host_.size()))
+      throw std::invalid_argument("wall triangle with an unknown material");
+  n_triangles_ = static_cast<int>(t.size());
+  par::upload(triangles_, t);
+}
+
 void DemSolver::set_spheres(const std::vector<Sphere>& s) {
+  if (s.size() >= triangle_partner) throw std::invalid_argument("too many spheres");
   n_ = static_cast<int>(s.size());
   std::vector<Vec3> pos, vel, omega;
   std::vector<Real> quat, radius, mass, inertia;
@@ -348,7 +405,8 @@ void DemSolver::sort_spheres() {
 void DemSolver::step(Real dt) {
   sort_spheres();
   const DemView v = view();
-  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, reach(), dt);
+  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_,
+                   reach(), dt);
   detail::integrate(v, gravity_, dt);
   hist_old_.swap(hist_new_);
 }

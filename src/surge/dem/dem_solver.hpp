@@ -5,7 +5,7 @@
 // canonical order (lower id first) and negated on the other side, so both sides agree
 // bit for bit and results do not depend on the thread count.
 //
-// Not yet here (the DEM issue): triangle-mesh walls, sphere packs, case files, output.
+// Not yet here (the DEM issue): sphere packs, case files, output, force gauges on walls.
 #pragma once
 #include "surge/dem/contact_linear_spring.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
@@ -34,6 +34,14 @@ struct Plane {
   int material = 0;
 };
 
+// A wall triangle (from an STL mesh). Triangles of one mesh form one smooth surface:
+// a sphere touching several of them at a shared edge or vertex gets one contact.
+struct WallTriangle {
+  Vec3 a{}, b{}, c{};
+  int mesh = 0;
+  int material = 0;
+};
+
 struct Sphere {
   Vec3 pos{}, vel{}, omega{};
   Real radius = 0.01f;
@@ -43,6 +51,8 @@ struct Sphere {
 inline constexpr int max_contacts = 16; // history slots per sphere
 inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
 inline constexpr std::uint32_t plane_partner = 0x80000000U; // partner id of plane k: plane_partner | k
+inline constexpr std::uint32_t triangle_partner = 0x40000000U; // partner id of wall triangle t
+inline constexpr int max_wall_candidates = 8; // wall triangles touching one sphere
 
 // One history slot: the partner and the A-side (lower id) springs of that contact.
 struct ContactSlot {
@@ -68,6 +78,8 @@ class DemSolver {
 public:
   DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi);
   void set_spheres(const std::vector<Sphere>& s);
+  // Triangle-mesh walls (all meshes together; WallTriangle::mesh tells them apart).
+  void set_wall_triangles(const std::vector<WallTriangle>& t);
   // Bonds every pair of spheres of bonded materials whose gap is below `gap` (SPEC §3,
   // CFM); call once after set_spheres. Returns the number of bonds.
   long bond_touching(Real gap);
@@ -93,6 +105,8 @@ private:
   par::Buffer<Material> materials_;
   par::Buffer<Plane> planes_;
   int n_planes_ = 0;
+  par::Buffer<WallTriangle> triangles_;
+  int n_triangles_ = 0;
   Vec3 gravity_{};
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};

@@ -1,6 +1,7 @@
 #include "surge/geometry/stl_mesh.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/geometry/closest_point.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -103,24 +104,6 @@ Mesh read_stl(const std::string& path) {
   return parse_stl(ss.str(), path);
 }
 
-Vec3d closest_point(const Triangle& t, const Vec3d& p) {
-  const Vec3d ab = t.b - t.a, ac = t.c - t.a, ap = p - t.a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return t.a;
-  const Vec3d bp = p - t.b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return t.b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return t.a + ab * (d1 / (d1 - d3));
-  const Vec3d cp = p - t.c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return t.c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return t.a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return t.b + (t.c - t.b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1.0 / (va + vb + vc);
-  return t.a + ab * (vb * denom) + ac * (vc * denom);
-}
+Vec3d closest_point(const Triangle& t, const Vec3d& p) { return closest_point_on_triangle(t.a, t.b, t.c, p).point; }
 
 } // namespace surge::geometry

@@ -21,7 +21,7 @@ Mesh read_stl(const std::string& path);
 // Parses STL bytes; `name` is used in messages.
 Mesh parse_stl(const std::string& bytes, const std::string& name);
 
-// Closest point on triangle t to p (Ericson, Real-Time Collision Detection, 5.1.5).
+// Closest point on triangle t to p (geometry/closest_point.hpp).
 Vec3d closest_point(const Triangle& t, const Vec3d& p);
 
 } // namespace surge::geometry
