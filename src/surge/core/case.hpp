@@ -74,6 +74,44 @@ struct GaugeSpec {
   int line = 0;
 };
 
+// DEM (SPEC §3): materials by name, sphere packs, walls for the spheres.
+struct DemMaterialSpec {
+  std::string name;
+  double density = 2500, young = 1e6, nu = 0.2, phi_deg = 30, restitution = 0.5;
+  double k_roll = 0, k_roll_max = 0, k_twist = 0, k_twist_max = 0;
+  bool bonded = false;
+  double bond_cn = 0, bond_cs = 0;
+  int line = 0;
+};
+
+struct DemPackSpec {
+  bool from_csv = false;
+  Box box; // lattice pack: spheres touching on a cubic lattice inside the box
+  double radius = 0;
+  double jitter = 0; // random offset of each sphere, as a fraction of its radius
+  std::string csv;   // x, y, z, r per line (resolved path)
+  int material = 0;  // index into DemConfig::materials
+  Vec3d velocity{};
+  int line = 0;
+};
+
+struct DemWallSpec {
+  bool is_mesh = false;
+  Vec3d point{}, normal{0, 0, 1}; // plane
+  std::string mesh_path;          // STL
+  int material = 0;
+  int line = 0;
+};
+
+struct DemConfig {
+  double dt_factor = 0.1; // dt = factor * min sqrt(m / k_n)
+  double bond_gap = 1e-4; // spheres of bonded materials closer than this are bonded at the start [m]
+  std::vector<DemMaterialSpec> materials;
+  std::vector<DemPackSpec> packs;
+  std::vector<DemWallSpec> walls;
+  [[nodiscard]] bool active() const { return !packs.empty(); }
+};
+
 struct Case {
   std::string name = "case";
   std::string source; // file it came from
@@ -85,6 +123,7 @@ struct Case {
   std::vector<FluidRegion> fluid;
   std::vector<WallSpec> walls;
   std::vector<GaugeSpec> gauges;
+  DemConfig dem;
 
   [[nodiscard]] double h() const { return sph.h_over_dp * dp; }
   [[nodiscard]] double water_depth() const {

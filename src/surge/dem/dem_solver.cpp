@@ -246,6 +246,7 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         v.force[i] = f;
         v.torque[i] = t;
         v.broken[i] += broken;
+        v.ncontact[i] = static_cast<std::uint32_t>(used);
       });
 }
 
@@ -348,6 +349,8 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::fill(torque_, Vec3{});
   broken_.resize(s.size());
   par::fill(broken_, 0U);
+  ncontact_.resize(s.size());
+  par::fill(ncontact_, 0U);
   hist_old_.resize(s.size() * max_contacts);
   hist_new_.resize(s.size() * max_contacts);
   par::fill(hist_old_, ContactSlot{});
@@ -369,7 +372,8 @@ DemView DemSolver::view() {
           id_.data(),
           hist_old_.data(),
           hist_new_.data(),
-          broken_.data()};
+          broken_.data(),
+          ncontact_.data()};
 }
 
 Real DemSolver::critical_dt(Real factor) const {
@@ -449,6 +453,9 @@ std::vector<Sphere> DemSolver::spheres() const {
 }
 std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_), par::download(id_)); }
 std::vector<Vec3> DemSolver::torques() const { return by_id(par::download(torque_), par::download(id_)); }
+std::vector<std::uint32_t> DemSolver::contact_counts() const {
+  return by_id(par::download(ncontact_), par::download(id_));
+}
 std::vector<Real> DemSolver::quaternions() const { return by_id(par::download(quat_), par::download(id_), 4); }
 
 } // namespace surge::dem

@@ -50,9 +50,9 @@ struct Sphere {
 
 inline constexpr int max_contacts = 16; // history slots per sphere
 inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
-inline constexpr std::uint32_t plane_partner = 0x80000000U; // partner id of plane k: plane_partner | k
+inline constexpr std::uint32_t plane_partner = 0x80000000U;    // partner id of plane k: plane_partner | k
 inline constexpr std::uint32_t triangle_partner = 0x40000000U; // partner id of wall triangle t
-inline constexpr int max_wall_candidates = 8; // wall triangles touching one sphere
+inline constexpr int max_wall_candidates = 8;                  // wall triangles touching one sphere
 
 // One history slot: the partner and the A-side (lower id) springs of that contact.
 struct ContactSlot {
@@ -71,7 +71,8 @@ struct DemView {
   std::uint8_t* material;
   std::uint32_t* id;
   ContactSlot *hist_old, *hist_new;
-  std::uint32_t* broken; // bonds this sphere has lost so far (each bond counts on both spheres)
+  std::uint32_t* broken;   // bonds this sphere has lost so far (each bond counts on both spheres)
+  std::uint32_t* ncontact; // contacts of the last step
 };
 
 class DemSolver {
@@ -92,7 +93,8 @@ public:
   [[nodiscard]] std::vector<Sphere> spheres() const;
   [[nodiscard]] std::vector<Vec3> forces() const; // contact forces of the last step, by id
   [[nodiscard]] std::vector<Vec3> torques() const;
-  [[nodiscard]] std::vector<Real> quaternions() const; // 4 per sphere, by id
+  [[nodiscard]] std::vector<Real> quaternions() const;             // 4 per sphere, by id
+  [[nodiscard]] std::vector<std::uint32_t> contact_counts() const; // by id
   [[nodiscard]] int size() const { return n_; }
   DemView view();
 
@@ -115,7 +117,7 @@ private:
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;
   par::Buffer<Real> quat_, radius_, mass_, inertia_, tmp1_;
   par::Buffer<std::uint8_t> material_, tmpb_;
-  par::Buffer<std::uint32_t> id_, tmpu_, broken_;
+  par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
   par::Buffer<ContactSlot> hist_old_, hist_new_, tmph_;
 };
 

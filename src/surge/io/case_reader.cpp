@@ -183,14 +183,135 @@ Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
   return b;
 }
 
+void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
+  r.check_keys(d, "dem", {"dt_factor", "bond_gap", "materials", "packs", "walls"});
+  auto& dem = c.dem;
+  dem.dt_factor = r.get(d, "dem", "dt_factor", dem.dt_factor);
+  if (!(dem.dt_factor > 0 && dem.dt_factor <= 0.5)) r.fail(d["dt_factor"], "dem.dt_factor", "must lie in (0, 0.5]");
+  dem.bond_gap = r.get(d, "dem", "bond_gap", dem.bond_gap);
+  if (dem.bond_gap < 0) r.fail(d["bond_gap"], "dem.bond_gap", "must not be negative");
+  const YAML::Node mats = d["materials"];
+  if (!mats.IsDefined() || !mats.IsSequence() || mats.size() == 0)
+    r.fail(mats.IsDefined() ? mats : d, "dem.materials", "a list of at least one material is required");
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const std::string path = "dem.materials." + std::to_string(i);
+    const YAML::Node m = mats[i];
+    r.check_keys(m, path, {"name", "density", "E", "nu", "phi", "restitution", "rolling", "twisting", "bond"});
+    DemMaterialSpec ms;
+    ms.line = m.Mark().line + 1;
+    ms.name = r.require<std::string>(m, path, "name");
+    for (const auto& other : dem.materials)
+      if (other.name == ms.name) r.fail(m["name"], path + ".name", "duplicate material name");
+    ms.density = r.get(m, path, "density", ms.density);
+    ms.young = r.get(m, path, "E", ms.young);
+    ms.nu = r.get(m, path, "nu", ms.nu);
+    ms.phi_deg = r.get(m, path, "phi", ms.phi_deg);
+    ms.restitution = r.get(m, path, "restitution", ms.restitution);
+    if (!(ms.density > 0)) r.fail(m["density"], path + ".density", "must be positive");
+    if (!(ms.young > 0)) r.fail(m["E"], path + ".E", "must be positive");
+    if (!(ms.nu > 0)) r.fail(m["nu"], path + ".nu", "must be positive");
+    if (!(ms.phi_deg >= 0 && ms.phi_deg < 90))
+      r.fail(m["phi"], path + ".phi", "friction angle must lie in [0, 90) degrees");
+    if (!(ms.restitution > 0 && ms.restitution <= 1))
+      r.fail(m["restitution"], path + ".restitution", "must lie in (0, 1]");
+    auto pair = [&](const char* key, double& k, double& kmax) {
+      if (!m[key].IsDefined()) return;
+      const auto v = m[key];
+      if (!v.IsSequence() || v.size() != 2) r.fail(v, path + "." + key, "expected [stiffness factor, cap factor]");
+      k = r.as<double>(v[0], path + "." + key);
+      kmax = r.as<double>(v[1], path + "." + key);
+      if (k < 0 || kmax < 0) r.fail(v, path + "." + key, "factors must not be negative");
+    };
+    pair("rolling", ms.k_roll, ms.k_roll_max);
+    pair("twisting", ms.k_twist, ms.k_twist_max);
+    if (const auto b = m["bond"]; b.IsDefined()) {
+      r.check_keys(b, path + ".bond", {"cn", "cs"});
+      ms.bonded = true;
+      ms.bond_cn = r.require<double>(b, path + ".bond", "cn");
+      ms.bond_cs = r.require<double>(b, path + ".bond", "cs");
+      if (ms.bond_cn < 0 || ms.bond_cs < 0) r.fail(b, path + ".bond", "strengths must not be negative");
+    }
+    dem.materials.push_back(ms);
+  }
+  auto material = [&](const YAML::Node& n, const std::string& path) {
+    const auto name = r.require<std::string>(n, path, "material");
+    for (std::size_t k = 0; k < dem.materials.size(); ++k)
+      if (dem.materials[k].name == name) return static_cast<int>(k);
+    r.fail(n["material"], path + ".material", "no DEM material named '" + name + "'");
+  };
+  const auto dir = std::filesystem::path(r.file()).parent_path();
+  auto resolve = [&](const YAML::Node& n, const std::string& key, const std::string& rel) {
+    std::filesystem::path p(rel);
+    if (p.is_relative()) p = dir / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) r.fail(n, key, "file '" + p.string() + "' not found");
+    return p.string();
+  };
+  if (const auto walls = d["walls"]; walls.IsDefined()) {
+    if (!walls.IsSequence()) r.fail(walls, "dem.walls", "expected a list of walls");
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const std::string path = "dem.walls." + std::to_string(i);
+      const YAML::Node w = walls[i];
+      r.check_keys(w, path, {"plane", "mesh", "material"});
+      DemWallSpec ws;
+      ws.line = w.Mark().line + 1;
+      ws.material = material(w, path);
+      if (w["plane"].IsDefined() == w["mesh"].IsDefined())
+        r.fail(w, path, "a DEM wall needs exactly one of 'plane' or 'mesh'");
+      if (const auto pl = w["plane"]; pl.IsDefined()) {
+        r.check_keys(pl, path + ".plane", {"point", "normal"});
+        ws.point = r.require<Vec3d>(pl, path + ".plane", "point");
+        ws.normal = r.require<Vec3d>(pl, path + ".plane", "normal");
+        if (!(norm(ws.normal) > 0)) r.fail(pl["normal"], path + ".plane.normal", "must not be zero");
+      } else {
+        ws.is_mesh = true;
+        ws.mesh_path = resolve(w["mesh"], path + ".mesh", r.as<std::string>(w["mesh"], path + ".mesh"));
+      }
+      dem.walls.push_back(ws);
+    }
+  }
+  if (const auto packs = d["packs"]; packs.IsDefined()) {
+    if (!packs.IsSequence()) r.fail(packs, "dem.packs", "expected a list of sphere packs");
+    for (std::size_t i = 0; i < packs.size(); ++i) {
+      const std::string path = "dem.packs." + std::to_string(i);
+      const YAML::Node pk = packs[i];
+      r.check_keys(pk, path, {"box", "radius", "jitter", "csv", "material", "velocity"});
+      DemPackSpec ps;
+      ps.line = pk.Mark().line + 1;
+      ps.material = material(pk, path);
+      ps.velocity = r.get(pk, path, "velocity", ps.velocity);
+      if (pk["box"].IsDefined() == pk["csv"].IsDefined())
+        r.fail(pk, path, "a pack needs exactly one of 'box' or 'csv'");
+      if (pk["box"].IsDefined()) {
+        ps.box = parse_box(r, pk["box"], path + ".box");
+        ps.radius = r.require<double>(pk, path, "radius");
+        if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+        ps.jitter = r.get(pk, path, "jitter", 0.0);
+        if (!(ps.jitter >= 0 && ps.jitter < 0.5)) r.fail(pk["jitter"], path + ".jitter", "must lie in [0, 0.5)");
+        for (int k = 0; k < 3; ++k)
+          if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)
+            r.fail(pk["box"], path + ".box", "the box is thinner than one sphere diameter");
+        if (!c.domain.contains(ps.box.min, 1e-9) || !c.domain.contains(ps.box.max, 1e-9))
+          r.fail(pk["box"], path + ".box", "the pack lies (partly) outside the domain");
+      } else {
+        ps.from_csv = true;
+        ps.csv = resolve(pk["csv"], path + ".csv", r.as<std::string>(pk["csv"], path + ".csv"));
+      }
+      dem.packs.push_back(ps);
+    }
+  }
+}
+
 Case parse(const YAML::Node& root, Reader& r) {
   Case c;
   if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
-  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges"});
+  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem"});
   c.name = r.require<std::string>(root, "", "name");
   if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos)
     r.fail(root["name"], "name", "must be a non-empty name without slashes");
-  c.dp = r.require<double>(root, "", "dp");
+  // dp matters for water and SPH walls; a DEM-only case may leave it out.
+  const bool sph_case = root["fluid"].IsDefined() || root["walls"].IsDefined() || !root["dem"].IsDefined();
+  c.dp = sph_case ? r.require<double>(root, "", "dp") : r.get(root, "", "dp", 0.01);
   if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
 
   if (const auto t = root["time"]; t.IsDefined()) {
@@ -388,8 +509,14 @@ Case parse(const YAML::Node& root, Reader& r) {
       r.fail(root["dp"], "dp", m.str());
     }
   }
-  if (c.fluid.empty() && c.walls.empty())
-    r.fail(root, "fluid", "the case has neither fluid nor walls: nothing to simulate");
+  if (const auto d = root["dem"]; d.IsDefined()) parse_dem(r, d, c);
+  if (c.dem.active() && !c.fluid.empty())
+    r.fail(root["dem"], "dem",
+           "water and DEM spheres together need the SPH-DEM coupling, which is not implemented yet");
+  if (c.dem.active() && !c.gauges.empty())
+    r.fail(root["gauges"], "gauges", "gauges measure the water; a DEM-only case has none");
+  if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
+    r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0))
     r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
   if (!c.fluid.empty() && !(c.sound_speed() > 0))
@@ -506,7 +633,57 @@ std::string to_yaml(const Case& c) {
     }
     e << YAML::EndMap;
   }
-  e << YAML::EndSeq << YAML::EndMap;
+  e << YAML::EndSeq;
+  if (c.dem.active()) {
+    const auto& d = c.dem;
+    e << YAML::Key << "dem" << YAML::Value << YAML::BeginMap;
+    e << YAML::Key << "dt_factor" << YAML::Value << d.dt_factor << YAML::Key << "bond_gap" << YAML::Value << d.bond_gap;
+    e << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
+    for (const auto& m : d.materials) {
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name << YAML::Key << "density"
+        << YAML::Value << m.density << YAML::Key << "E" << YAML::Value << m.young << YAML::Key << "nu" << YAML::Value
+        << m.nu << YAML::Key << "phi" << YAML::Value << m.phi_deg << YAML::Key << "restitution" << YAML::Value
+        << m.restitution << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_roll
+        << m.k_roll_max << YAML::EndSeq << YAML::Key << "twisting" << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << m.k_twist << m.k_twist_max << YAML::EndSeq;
+      if (m.bonded)
+        e << YAML::Key << "bond" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "cn" << YAML::Value
+          << m.bond_cn << YAML::Key << "cs" << YAML::Value << m.bond_cs << YAML::EndMap;
+      e << YAML::EndMap;
+    }
+    e << YAML::EndSeq << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
+    for (const auto& w : d.walls) {
+      e << YAML::BeginMap;
+      if (w.is_mesh) {
+        e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+      } else {
+        e << YAML::Key << "plane" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "point" << YAML::Value;
+        vec(w.point);
+        e << YAML::Key << "normal" << YAML::Value;
+        vec(w.normal);
+        e << YAML::EndMap;
+      }
+      e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(w.material)].name
+        << YAML::EndMap;
+    }
+    e << YAML::EndSeq << YAML::Key << "packs" << YAML::Value << YAML::BeginSeq;
+    for (const auto& pk : d.packs) {
+      e << YAML::BeginMap;
+      if (pk.from_csv) {
+        e << YAML::Key << "csv" << YAML::Value << pk.csv;
+      } else {
+        e << YAML::Key << "box" << YAML::Value;
+        box(pk.box);
+        e << YAML::Key << "radius" << YAML::Value << pk.radius << YAML::Key << "jitter" << YAML::Value << pk.jitter;
+      }
+      e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(pk.material)].name;
+      e << YAML::Key << "velocity" << YAML::Value;
+      vec(pk.velocity);
+      e << YAML::EndMap;
+    }
+    e << YAML::EndSeq << YAML::EndMap;
+  }
+  e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }
 

@@ -35,6 +35,46 @@ const char* vtk_type() {
 
 } // namespace
 
+namespace {
+// Builds a PolyData file of points: points first, then point-data arrays.
+class VtpBuilder {
+public:
+  explicit VtpBuilder(std::size_t n) {
+    x_ << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+       << "<PolyData>\n<Piece NumberOfPoints=\"" << n
+       << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+  }
+  void points(const std::vector<double>& xyz) {
+    x_ << "<Points>\n";
+    array("position", xyz, 3);
+    x_ << "</Points>\n<PointData Vectors=\"velocity\">\n";
+  }
+  template <class T>
+  void array(const char* name, const std::vector<T>& data, int comps) {
+    const std::size_t off = append_block(blob_, data);
+    x_ << "<DataArray type=\"" << vtk_type<T>() << "\" Name=\"" << name << "\" NumberOfComponents=\"" << comps
+       << "\" format=\"appended\" offset=\"" << off << "\"/>\n";
+  }
+  void write(const std::string& path) {
+    x_ << "</PointData>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+    std::string out = x_.str();
+    out += blob_;
+    out += "\n</AppendedData>\n</VTKFile>\n";
+    write_file_atomic(path, out);
+  }
+
+private:
+  std::ostringstream x_;
+  std::string blob_;
+};
+
+void push3(std::vector<float>& v, const Vec3& a) {
+  v.insert(v.end(), {static_cast<float>(a.x), static_cast<float>(a.y), static_cast<float>(a.z)});
+}
+void push3(std::vector<double>& v, const Vec3d& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
+} // namespace
+
 void write_particles_vtp(const std::string& path, const particles::HostParticles& h, const Vec3d& origin,
                          std::initializer_list<Kind> kinds) {
   std::vector<double> pos;
@@ -45,41 +85,41 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
     bool take = false;
     for (Kind k : kinds) take = take || h.kind[i] == static_cast<std::uint8_t>(k);
     if (!take) continue;
-    const Vec3d p = origin + Vec3d(h.pos[i]);
-    pos.insert(pos.end(), {p.x, p.y, p.z});
-    vel.insert(vel.end(),
-               {static_cast<float>(h.vel[i].x), static_cast<float>(h.vel[i].y), static_cast<float>(h.vel[i].z)});
+    push3(pos, origin + Vec3d(h.pos[i]));
+    push3(vel, h.vel[i]);
     rho.push_back(static_cast<float>(h.rho[i]));
     press.push_back(static_cast<float>(h.press[i]));
     kind.push_back(h.kind[i]);
     id.push_back(h.id[i]);
   }
-  const std::size_t n = id.size();
-  std::string blob;
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\"?>\n"
-    << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-    << "<PolyData>\n<Piece NumberOfPoints=\"" << n
-    << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
-  auto array = [&](const char* name, const auto& data, int comps) {
-    using T = typename std::decay_t<decltype(data)>::value_type;
-    const std::size_t off = append_block(blob, data);
-    x << "<DataArray type=\"" << vtk_type<T>() << "\" Name=\"" << name << "\" NumberOfComponents=\"" << comps
-      << "\" format=\"appended\" offset=\"" << off << "\"/>\n";
-  };
-  x << "<Points>\n";
-  array("position", pos, 3);
-  x << "</Points>\n<PointData Scalars=\"density\" Vectors=\"velocity\">\n";
-  array("velocity", vel, 3);
-  array("density", rho, 1);
-  array("pressure", press, 1);
-  array("kind", kind, 1);
-  array("id", id, 1);
-  x << "</PointData>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
-  std::string out = x.str();
-  out += blob;
-  out += "\n</AppendedData>\n</VTKFile>\n";
-  write_file_atomic(path, out);
+  VtpBuilder b(id.size());
+  b.points(pos);
+  b.array("velocity", vel, 3);
+  b.array("density", rho, 1);
+  b.array("pressure", press, 1);
+  b.array("kind", kind, 1);
+  b.array("id", id, 1);
+  b.write(path);
+}
+
+void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin) {
+  std::vector<double> pos;
+  std::vector<float> vel, omega, radius;
+  for (std::size_t i = 0; i < s.pos.size(); ++i) {
+    push3(pos, origin + Vec3d(s.pos[i]));
+    push3(vel, s.vel[i]);
+    push3(omega, s.omega[i]);
+    radius.push_back(static_cast<float>(s.radius[i]));
+  }
+  VtpBuilder b(s.pos.size());
+  b.points(pos);
+  b.array("velocity", vel, 3);
+  b.array("angular_velocity", omega, 3);
+  b.array("radius", radius, 1);
+  b.array("material", s.material, 1);
+  b.array("contacts", s.contacts, 1);
+  b.array("id", s.id, 1);
+  b.write(path);
 }
 
 void PvdCollection::add(double time, const std::string& relative_file) {

@@ -13,6 +13,16 @@ namespace surge::io {
 void write_particles_vtp(const std::string& path, const particles::HostParticles& h, const Vec3d& origin,
                          std::initializer_list<Kind> kinds);
 
+// DEM spheres of one output time, by id (positions local, like particles).
+struct SphereFrame {
+  std::vector<Vec3> pos, vel, omega;
+  std::vector<Real> radius;
+  std::vector<std::uint8_t> material;
+  std::vector<std::uint32_t> contacts, id;
+};
+// Sphere centres with velocity, angular_velocity, radius, material, contacts, id.
+void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin);
+
 // A ParaView collection (fluid.pvd): rewritten atomically after each new file.
 class PvdCollection {
 public:

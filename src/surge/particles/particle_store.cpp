@@ -46,7 +46,6 @@ ParticleView ParticleStore::view() {
           vsig_.data(), kind_.data(), id_.data()};
 }
 
-
 template <class T>
 void ParticleStore::reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm) {
   par::gather(field, tmp, perm, n_);

@@ -7,6 +7,7 @@
 #include "surge/io/case_reader.hpp"
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
+#include "surge/sim/run_support.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
@@ -28,20 +29,6 @@ constexpr double assumed_particle_steps_per_s = 2.0e6;
 // Peak memory per particle (solver buffers 118 B + host copies for output), docs/benchmarks.md.
 constexpr double bytes_per_particle_estimate = 150.0;
 
-std::string hms(double s) {
-  if (!std::isfinite(s) || s < 0) return "--:--:--";
-  const long t = std::lround(s);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%02ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
-  return buf;
-}
-
-double peak_rss_bytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) * 1024.0;
-}
-
 struct Totals {
   long removed_domain = 0, removed_density = 0, non_finite = 0;
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}; // where (absolute)
@@ -53,15 +40,7 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const std
   std::ostringstream j;
   j.precision(10);
   const double n_all = static_cast<double>(init.n_fluid + init.n_wall);
-  std::string msg;
-  for (char ch : message) {
-    if (ch == '"' || ch == '\\') msg += '\\';
-    if (ch == '\n') {
-      msg += "\\n";
-      continue;
-    }
-    msg += ch;
-  }
+  const std::string msg = json_escape(message);
   j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
     << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
     << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
@@ -103,6 +82,7 @@ double first_dt(const Case& c) {
 } // namespace
 
 int check(const Case& c) {
+  if (c.dem.active()) return check_dem(c);
   const auto init = sph::build_initial_state(c);
   const double n = static_cast<double>(init.n_fluid + init.n_wall);
   const double dt0 = first_dt(c);
@@ -135,6 +115,7 @@ int check(const Case& c) {
 }
 
 int run(const Case& c, const RunOptions& opt) {
+  if (c.dem.active()) return run_dem(c, opt);
   const auto wall0 = Clock::now();
   // Everything that can fail on input happens before the output folder is touched.
   const sph::InitialState init = sph::build_initial_state(c);

@@ -24,4 +24,8 @@ int run(const Case& c, const RunOptions& opt);
 // Prints what `surge check` reports; returns 0.
 int check(const Case& c);
 
+// The DEM-only versions (cases with dem.packs and no water), dem_simulation.cpp.
+int run_dem(const Case& c, const RunOptions& opt);
+int check_dem(const Case& c);
+
 } // namespace surge::sim
