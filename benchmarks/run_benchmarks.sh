@@ -14,6 +14,9 @@ for threads in 1 2; do
   build/cpu/benchmarks/bench_sph cases/spheric_test2.yaml 10 $threads --set dp=0.0102 | tee -a "$out"
   # The same case at about 1e5 particles, for cost per particle-step against size.
   build/cpu/benchmarks/bench_sph cases/spheric_test2.yaml 40 $threads --set dp=0.0237 | tee -a "$out"
+  # DEM: spheres touching on a lattice, settling, full contact model.
+  build/cpu/benchmarks/bench_dem 20000 2000 $threads | tee -a "$out"
+  build/cpu/benchmarks/bench_dem 100000 2000 $threads | tee -a "$out"
   # Neighbour search alone, 1e6 particles.
   build/cpu/benchmarks/bench_neighbour 1000000 $threads | tee -a "$out"
 done

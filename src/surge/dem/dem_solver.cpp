@@ -271,12 +271,25 @@ void bond(const DemView& v, const neighbour::GridView& g, const Material* mats, 
 
 // Semi-implicit Euler for translation and rotation; the orientation quaternion is
 // advanced by dq/dt = 1/2 (0, w) q and renormalised.
-void integrate(const DemView& v, Vec3 gravity, Real dt) {
+// Cundall local damping: each component of the unbalanced force loses a_d |F_k| against
+// the motion, F_k - a_d |F_k| sign(v_k) (SPEC §3, "useful to settle a pack").
+SURGE_HD inline Vec3 local_damping(const Vec3& f, const Vec3& v, Real ad) {
+  Vec3 out = f;
+  for (int k = 0; k < 3; ++k) {
+    const Real mag = f[k] < 0 ? -f[k] : f[k];
+    out[k] -= v[k] > 0 ? ad * mag : (v[k] < 0 ? -ad * mag : Real(0));
+  }
+  return out;
+}
+
+void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        v.vel[i] += (v.force[i] * (1 / v.mass[i]) + gravity) * dt;
+        const Vec3 f = local_damping(v.force[i] + gravity * v.mass[i], v.vel[i], ad);
+        const Vec3 m = local_damping(v.torque[i], v.omega[i], ad);
+        v.vel[i] += f * (dt / v.mass[i]);
         v.pos[i] += v.vel[i] * dt;
-        const Vec3 w = (v.omega[i] += v.torque[i] * (dt / v.inertia[i]));
+        const Vec3 w = (v.omega[i] += m * (dt / v.inertia[i]));
         Real* q = v.quat + 4 * static_cast<std::size_t>(i);
         const Real h = dt / 2;
         const Real q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
@@ -411,7 +424,7 @@ void DemSolver::step(Real dt) {
   const DemView v = view();
   detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_,
                    reach(), dt);
-  detail::integrate(v, gravity_, dt);
+  detail::integrate(v, gravity_, local_damping_, dt);
   hist_old_.swap(hist_new_);
 }
 

@@ -84,6 +84,8 @@ public:
   // Bonds every pair of spheres of bonded materials whose gap is below `gap` (SPEC §3,
   // CFM); call once after set_spheres. Returns the number of bonds.
   long bond_touching(Real gap);
+  // Cundall local damping coefficient a_d (0: off, the default for dynamic runs).
+  void set_local_damping(Real ad) { local_damping_ = ad; }
   // Bonds broken since the start.
   [[nodiscard]] long broken_bonds() const;
   // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).
@@ -110,6 +112,7 @@ private:
   par::Buffer<WallTriangle> triangles_;
   int n_triangles_ = 0;
   Vec3 gravity_{};
+  Real local_damping_ = 0;
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   int n_ = 0;

@@ -184,11 +184,14 @@ Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
 }
 
 void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
-  r.check_keys(d, "dem", {"dt_factor", "bond_gap", "materials", "packs", "walls"});
+  r.check_keys(d, "dem", {"dt_factor", "bond_gap", "local_damping", "materials", "packs", "walls"});
   auto& dem = c.dem;
   dem.dt_factor = r.get(d, "dem", "dt_factor", dem.dt_factor);
   if (!(dem.dt_factor > 0 && dem.dt_factor <= 0.5)) r.fail(d["dt_factor"], "dem.dt_factor", "must lie in (0, 0.5]");
   dem.bond_gap = r.get(d, "dem", "bond_gap", dem.bond_gap);
+  dem.local_damping = r.get(d, "dem", "local_damping", dem.local_damping);
+  if (!(dem.local_damping >= 0 && dem.local_damping < 1))
+    r.fail(d["local_damping"], "dem.local_damping", "must lie in [0, 1)");
   if (dem.bond_gap < 0) r.fail(d["bond_gap"], "dem.bond_gap", "must not be negative");
   const YAML::Node mats = d["materials"];
   if (!mats.IsDefined() || !mats.IsSequence() || mats.size() == 0)
@@ -638,6 +641,7 @@ std::string to_yaml(const Case& c) {
     const auto& d = c.dem;
     e << YAML::Key << "dem" << YAML::Value << YAML::BeginMap;
     e << YAML::Key << "dt_factor" << YAML::Value << d.dt_factor << YAML::Key << "bond_gap" << YAML::Value << d.bond_gap;
+    e << YAML::Key << "local_damping" << YAML::Value << d.local_damping;
     e << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
     for (const auto& m : d.materials) {
       e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name << YAML::Key << "density"

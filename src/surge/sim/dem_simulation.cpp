@@ -81,6 +81,7 @@ dem::DemSolver make_solver(const Case& c, const DemSetup& s) {
   const Vec3 hi(c.domain.max - c.domain.min);
   dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
   solver.set_wall_triangles(s.triangles);
+  solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
   solver.set_spheres(s.spheres);
   return solver;
 }
