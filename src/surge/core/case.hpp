@@ -104,8 +104,9 @@ struct DemWallSpec {
 };
 
 struct DemConfig {
-  double dt_factor = 0.1; // dt = factor * min sqrt(m / k_n)
-  double bond_gap = 1e-4; // spheres of bonded materials closer than this are bonded at the start [m]
+  double dt_factor = 0.1;   // dt = factor * min sqrt(m / k_n)
+  double bond_gap = 1e-4;   // spheres of bonded materials closer than this are bonded at the start [m]
+  double local_damping = 0; // Cundall local damping a_d (0 for dynamic runs; ~0.7 to settle a pack)
   std::vector<DemMaterialSpec> materials;
   std::vector<DemPackSpec> packs;
   std::vector<DemWallSpec> walls;
