@@ -33,6 +33,21 @@ def read_vtp(path):
     return out
 
 
+def read_vtp_lines(path):
+    """Line cells of a .vtp (the bond network of DEM output) as an (n, 2) array of point indices."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    lines = reader.GetOutput().GetLines()
+    if lines.GetNumberOfCells() == 0:
+        return np.zeros((0, 2), dtype=int)
+    raw = vtk_to_numpy(lines.GetData())  # legacy layout: 2, a, b, 2, c, d, ...
+    return raw.reshape(-1, 3)[:, 1:]
+
+
 def read_pvd(path):
     """[(time, absolute vtp path)] in time order."""
     root = ET.parse(path).getroot()

@@ -162,6 +162,25 @@ bad_dem = write("bad_dem.yaml", open(os.path.join(case_dir, "slide_dem_only.yaml
 r = run(["check", bad_dem])
 check(r.returncode == 2 and "no DEM material named 'granite'" in r.stderr, f"unknown DEM material is rejected ({r.stderr.strip()[:120]})")
 
+# --- a bonded DEM block: bonds written as VTK lines, counted in the summary
+BONDED = """name: bonded
+time: {end: 0.02, output_every: 0.01}
+domain: {min: [0, 0, 0], max: [0.2, 0.2, 0.2]}
+dem:
+  materials: [{name: rock, bond: {cn: 1.0e6, cs: 1.0e6}}]
+  walls: [{plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: rock}]
+  packs: [{box: {min: [0, 0, 0], max: [0.08, 0.08, 0.08]}, radius: 0.01, material: rock}]
+"""
+out_b = os.path.join(WORK, "out_bonded")
+r = run(["run", write("bonded.yaml", BONDED), "--out", out_b, "--quiet"])
+sb = surge_post.read_summary(os.path.join(out_b, "summary.json"))
+check(r.returncode == 0 and sb["dem"]["bonds"] == 3 * 4 * 4 * 3, f"4x4x4 lattice pack has 144 bonds ({sb['dem']})")
+bf = surge_post.read_pvd(os.path.join(out_b, "spheres.pvd"))
+lines = surge_post.read_vtp_lines(bf[-1][1])
+pts = surge_post.read_vtp(bf[-1][1])["position"]
+lengths = np.linalg.norm(pts[lines[:, 0]] - pts[lines[:, 1]], axis=1) if len(lines) else np.zeros(0)
+check(len(lines) == 144 and np.abs(lengths - 0.02).max() < 1e-3, f"bonds written as 144 lines of length 2r ({len(lines)})")
+
 # --- a diverging run: CFL far above its limit
 out_bad = os.path.join(WORK, "out_unstable")
 r = run(["run", os.path.join(WORK, "good.yaml"), "--out", out_bad, "--set", "sph.cfl=8", "--set", "time.end=0.5",

@@ -466,6 +466,18 @@ std::vector<Sphere> DemSolver::spheres() const {
 }
 std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_), par::download(id_)); }
 std::vector<Vec3> DemSolver::torques() const { return by_id(par::download(torque_), par::download(id_)); }
+std::vector<std::uint32_t> DemSolver::intact_bonds() const {
+  const auto id = par::download(id_);
+  const auto hist = par::download(hist_old_);
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < id.size(); ++i)
+    for (int k = 0; k < max_contacts; ++k) {
+      const ContactSlot& s = hist[i * max_contacts + static_cast<std::size_t>(k)];
+      if (s.bonded && s.partner < triangle_partner && id[i] < s.partner) out.insert(out.end(), {id[i], s.partner});
+    }
+  return out;
+}
+
 std::vector<std::uint32_t> DemSolver::contact_counts() const {
   return by_id(par::download(ncontact_), par::download(id_));
 }

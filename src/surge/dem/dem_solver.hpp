@@ -97,6 +97,7 @@ public:
   [[nodiscard]] std::vector<Vec3> torques() const;
   [[nodiscard]] std::vector<Real> quaternions() const;             // 4 per sphere, by id
   [[nodiscard]] std::vector<std::uint32_t> contact_counts() const; // by id
+  [[nodiscard]] std::vector<std::uint32_t> intact_bonds() const;   // id pairs (lower id first), flattened
   [[nodiscard]] int size() const { return n_; }
   DemView view();
 

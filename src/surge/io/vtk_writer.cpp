@@ -39,11 +39,12 @@ namespace {
 // Builds a PolyData file of points: points first, then point-data arrays.
 class VtpBuilder {
 public:
-  explicit VtpBuilder(std::size_t n) {
+  // n points; lines: point-index pairs (a line cell each), for bond networks.
+  explicit VtpBuilder(std::size_t n, std::vector<std::int64_t> lines = {}) : lines_(std::move(lines)) {
     x_ << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-       << "<PolyData>\n<Piece NumberOfPoints=\"" << n
-       << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+       << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << lines_.size() / 2
+       << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
   }
   void points(const std::vector<double>& xyz) {
     x_ << "<Points>\n";
@@ -57,7 +58,16 @@ public:
        << "\" format=\"appended\" offset=\"" << off << "\"/>\n";
   }
   void write(const std::string& path) {
-    x_ << "</PointData>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+    x_ << "</PointData>\n";
+    if (!lines_.empty()) {
+      std::vector<std::int64_t> offsets;
+      for (std::size_t k = 2; k <= lines_.size(); k += 2) offsets.push_back(static_cast<std::int64_t>(k));
+      x_ << "<Lines>\n";
+      array("connectivity", lines_, 1);
+      array("offsets", offsets, 1);
+      x_ << "</Lines>\n";
+    }
+    x_ << "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
     std::string out = x_.str();
     out += blob_;
     out += "\n</AppendedData>\n</VTKFile>\n";
@@ -65,6 +75,7 @@ public:
   }
 
 private:
+  std::vector<std::int64_t> lines_;
   std::ostringstream x_;
   std::string blob_;
 };
@@ -111,7 +122,8 @@ void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3
     push3(omega, s.omega[i]);
     radius.push_back(static_cast<float>(s.radius[i]));
   }
-  VtpBuilder b(s.pos.size());
+  std::vector<std::int64_t> lines(s.bonds.begin(), s.bonds.end());
+  VtpBuilder b(s.pos.size(), std::move(lines));
   b.points(pos);
   b.array("velocity", vel, 3);
   b.array("angular_velocity", omega, 3);

@@ -19,8 +19,10 @@ struct SphereFrame {
   std::vector<Real> radius;
   std::vector<std::uint8_t> material;
   std::vector<std::uint32_t> contacts, id;
+  std::vector<std::uint32_t> bonds; // intact bonds as pairs of sphere indices (written as line cells)
 };
-// Sphere centres with velocity, angular_velocity, radius, material, contacts, id.
+// Sphere centres with velocity, angular_velocity, radius, material, contacts, id, and
+// the intact bonds as lines.
 void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin);
 
 // A ParaView collection (fluid.pvd): rewritten atomically after each new file.

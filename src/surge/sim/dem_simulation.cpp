@@ -149,6 +149,7 @@ int run_dem(const Case& c, const RunOptions& opt) {
       f.material.push_back(static_cast<std::uint8_t>(s.material));
     }
     f.contacts = solver.contact_counts();
+    f.bonds = solver.intact_bonds();
     for (std::size_t k = 0; k < sp.size(); ++k) f.id.push_back(static_cast<std::uint32_t>(k));
     char name[64];
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
