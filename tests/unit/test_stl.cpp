@@ -1,10 +1,12 @@
 // STL reading (ascii and binary give the same triangles) and closest points.
 #include "surge/core/error.hpp"
+#include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/stl_mesh.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
 
 using namespace surge;
 using namespace surge::geometry;
@@ -73,4 +75,27 @@ TEST(Stl, ClosestPointRegions) {
   const Vec3d vertex = closest_point(t, {-1, -1, 0});
   EXPECT_NEAR(vertex.x, 0, 1e-15);
   EXPECT_NEAR(vertex.y, 0, 1e-15);
+}
+
+TEST(SpherePacks, CsvErrorsNameTheLineAndLatticeFillsTheBox) {
+  const std::string path = ::testing::TempDir() + "/spheres_test.csv";
+  {
+    std::ofstream f(path);
+    f << "x, y, z, r\n0.1, 0.2, 0.3, 0.01\n# a comment\n0.1 0.2 oops 0.01\n";
+  }
+  try {
+    (void)read_sphere_csv(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) { EXPECT_EQ(e.line(), 4); }
+  {
+    std::ofstream f(path);
+    f << "0.1, 0.2, 0.3, 0.01\n0.2, 0.2, 0.3, 0.02 # second\n";
+  }
+  const auto ok = read_sphere_csv(path);
+  ASSERT_EQ(ok.size(), 2U);
+  EXPECT_DOUBLE_EQ(ok[1].radius, 0.02);
+  // 0.1 x 0.06 x 0.04 box, r = 0.01: 5 x 3 x 2 touching spheres, all inside the box.
+  const auto pack = lattice_pack({{0, 0, 0}, {0.1, 0.06, 0.04}}, 0.01, 0.0);
+  ASSERT_EQ(pack.size(), 30U);
+  for (const auto& s : pack) EXPECT_TRUE((Box{{0.01, 0.01, 0.01}, {0.09, 0.05, 0.03}}.contains(s.centre, 1e-12)));
 }
