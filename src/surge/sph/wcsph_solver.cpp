@@ -176,23 +176,26 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
         p.rho[i] = rho;
       });
 }
+// An axis-aligned box and its merge, for the reduction below (nvcc's extended lambdas
+// may not use types local to a function).
+struct Box2 {
+  Vec3 lo, hi;
+};
+struct MergeBoxes {
+  SURGE_HD Box2 operator()(const Box2& a, const Box2& b) const {
+    Box2 r;
+    for (int k = 0; k < 3; ++k) {
+      r.lo[k] = a.lo[k] < b.lo[k] ? a.lo[k] : b.lo[k];
+      r.hi[k] = a.hi[k] > b.hi[k] ? a.hi[k] : b.hi[k];
+    }
+    return r;
+  }
+};
+
 // Bounding box of the particles flagged Removed this step whose positions are finite.
 std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
   const auto removed = static_cast<std::uint8_t>(Kind::Removed);
   const Real big = std::numeric_limits<Real>::max();
-  struct Box2 {
-    Vec3 lo, hi;
-  };
-  struct Merge {
-    SURGE_HD Box2 operator()(const Box2& a, const Box2& b) const {
-      Box2 r;
-      for (int k = 0; k < 3; ++k) {
-        r.lo[k] = a.lo[k] < b.lo[k] ? a.lo[k] : b.lo[k];
-        r.hi[k] = a.hi[k] > b.hi[k] ? a.hi[k] : b.hi[k];
-      }
-      return r;
-    }
-  };
   const Box2 empty{{big, big, big}, {-big, -big, -big}};
   const Box2 b = par::parallel_reduce(
       p.n, empty,
@@ -201,7 +204,7 @@ std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
         if (p.kind[i] != removed || !std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z)) return empty;
         return Box2{x, x};
       },
-      Merge{});
+      MergeBoxes{});
   return {b.lo, b.hi};
 }
 } // namespace detail
