@@ -157,7 +157,6 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
       v.n, SURGE_LAMBDA(int i) {
         const ContactSlot* old_row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
         ContactSlot* new_row = v.hist_new + static_cast<std::size_t>(i) * max_contacts;
-        for (int k = 0; k < max_contacts; ++k) new_row[k] = ContactSlot{};
         int used = 0;
         std::uint32_t broken = 0;
         Vec3 f{}, t{};
@@ -247,6 +246,8 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         v.torque[i] = t;
         v.broken[i] += broken;
         v.ncontact[i] = static_cast<std::uint32_t>(used);
+        // Only the slots no contact filled need clearing (stored slots were written whole).
+        for (int k = used; k < max_contacts; ++k) new_row[k] = ContactSlot{};
       });
 }
 
