@@ -62,15 +62,16 @@ struct WallSpec {
   int line = 0;
 };
 
-enum class GaugeType { Height, Pressure, Velocity, Force };
+enum class GaugeType { Height, Pressure, Velocity, Force, Sphere };
 
 struct GaugeSpec {
   std::string name;
   GaugeType type = GaugeType::Height;
   double x = 0, y = 0;         // height gauges
   Vec3d at{};                  // pressure / velocity gauges
-  std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag
+  std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz
   std::string wall;            // force gauges: name of the wall
+  int sphere = 0;              // sphere gauges: index of the sphere (packs in order, spheres in pack order)
   int line = 0;
 };
 
@@ -92,6 +93,7 @@ struct DemPackSpec {
   std::string csv;   // x, y, z, r per line (resolved path)
   int material = 0;  // index into DemConfig::materials
   Vec3d velocity{};
+  bool fixed = false; // held in place (forces on it are still computed)
   int line = 0;
 };
 
@@ -113,6 +115,10 @@ struct DemConfig {
   [[nodiscard]] bool active() const { return !packs.empty(); }
 };
 
+struct CouplingConfig {
+  int body_layers = 0; // layers of body particles per sphere; 0: ceil(2h/dp) (SPEC §4)
+};
+
 struct Case {
   std::string name = "case";
   std::string source; // file it came from
@@ -125,7 +131,9 @@ struct Case {
   std::vector<WallSpec> walls;
   std::vector<GaugeSpec> gauges;
   DemConfig dem;
+  CouplingConfig coupling;
 
+  [[nodiscard]] bool coupled() const { return dem.active() && !fluid.empty(); }
   [[nodiscard]] double h() const { return sph.h_over_dp * dp; }
   [[nodiscard]] double water_depth() const {
     if (sph.hmax > 0) return sph.hmax;

@@ -286,8 +286,14 @@ SURGE_HD inline Vec3 local_damping(const Vec3& f, const Vec3& v, Real ad) {
 void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        const Vec3 f = local_damping(v.force[i] + gravity * v.mass[i], v.vel[i], ad);
-        const Vec3 m = local_damping(v.torque[i], v.omega[i], ad);
+        if (v.fixed[i]) {
+          v.vel[i] = Vec3{};
+          v.omega[i] = Vec3{};
+          return;
+        }
+        const std::uint32_t id = v.id[i];
+        const Vec3 f = local_damping(v.force[i] + v.ext_force[id] + gravity * v.mass[i], v.vel[i], ad);
+        const Vec3 m = local_damping(v.torque[i] + v.ext_torque[id], v.omega[i], ad);
         v.vel[i] += f * (dt / v.mass[i]);
         v.pos[i] += v.vel[i] * dt;
         const Vec3 w = (v.omega[i] += m * (dt / v.inertia[i]));
@@ -330,7 +336,7 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   n_ = static_cast<int>(s.size());
   std::vector<Vec3> pos, vel, omega;
   std::vector<Real> quat, radius, mass, inertia;
-  std::vector<std::uint8_t> mat;
+  std::vector<std::uint8_t> mat, fixed;
   std::vector<std::uint32_t> id;
   max_radius_ = 0;
   for (std::size_t k = 0; k < s.size(); ++k) {
@@ -345,6 +351,7 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
     mass.push_back(mk);
     inertia.push_back(Real(0.4) * mk * r * r);
     mat.push_back(static_cast<std::uint8_t>(s[k].material));
+    fixed.push_back(s[k].fixed ? 1 : 0);
     id.push_back(static_cast<std::uint32_t>(k));
     max_radius_ = std::max(max_radius_, r);
   }
@@ -356,6 +363,11 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::upload(mass_, mass);
   par::upload(inertia_, inertia);
   par::upload(material_, mat);
+  par::upload(fixed_, fixed);
+  ext_force_.resize(s.size());
+  ext_torque_.resize(s.size());
+  par::fill(ext_force_, Vec3{});
+  par::fill(ext_torque_, Vec3{});
   par::upload(id_, id);
   force_.resize(s.size());
   torque_.resize(s.size());
@@ -387,7 +399,10 @@ DemView DemSolver::view() {
           hist_old_.data(),
           hist_new_.data(),
           broken_.data(),
-          ncontact_.data()};
+          ncontact_.data(),
+          fixed_.data(),
+          ext_force_.data(),
+          ext_torque_.data()};
 }
 
 Real DemSolver::critical_dt(Real factor) const {
@@ -414,6 +429,7 @@ void DemSolver::sort_spheres() {
   par::gather(mass_, tmp1_, perm, n_);
   par::gather(inertia_, tmp1_, perm, n_);
   par::gather(material_, tmpb_, perm, n_);
+  par::gather(fixed_, tmpb_, perm, n_);
   par::gather(id_, tmpu_, perm, n_);
   par::gather(broken_, tmpu_, perm, n_);
   par::gather(hist_old_, tmph_, perm, n_, max_contacts);
@@ -427,6 +443,28 @@ void DemSolver::step(Real dt) {
                    reach(), dt);
   detail::integrate(v, gravity_, local_damping_, dt);
   hist_old_.swap(hist_new_);
+}
+
+void DemSolver::set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque) {
+  if (force.size() != static_cast<std::size_t>(n_) || torque.size() != static_cast<std::size_t>(n_))
+    throw std::invalid_argument("external forces need one entry per sphere");
+  par::copy(ext_force_, force);
+  par::copy(ext_torque_, torque);
+}
+
+void DemSolver::rigid_states(par::Buffer<RigidState>& out) {
+  out.resize(static_cast<std::size_t>(n_));
+  const DemView v = view();
+  RigidState* o = out.data();
+  par::parallel_for(
+      n_, SURGE_LAMBDA(int i) {
+        RigidState s;
+        s.pos = v.pos[i];
+        s.vel = v.vel[i];
+        s.omega = v.omega[i];
+        for (int k = 0; k < 4; ++k) s.q[k] = v.quat[4 * static_cast<std::size_t>(i) + k];
+        o[v.id[i]] = s;
+      });
 }
 
 namespace {
@@ -462,7 +500,8 @@ std::vector<Sphere> DemSolver::spheres() const {
   const auto radius = by_id(par::download(radius_), id);
   const auto mat = by_id(par::download(material_), id);
   std::vector<Sphere> out(id.size());
-  for (std::size_t k = 0; k < id.size(); ++k) out[k] = {pos[k], vel[k], omega[k], radius[k], mat[k]};
+  const auto fixed = by_id(par::download(fixed_), id);
+  for (std::size_t k = 0; k < id.size(); ++k) out[k] = {pos[k], vel[k], omega[k], radius[k], mat[k], fixed[k] != 0};
   return out;
 }
 std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_), par::download(id_)); }

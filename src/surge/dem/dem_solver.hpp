@@ -5,9 +5,11 @@
 // canonical order (lower id first) and negated on the other side, so both sides agree
 // bit for bit and results do not depend on the thread count.
 //
-// Not yet here (the DEM issue): sphere packs, case files, output, force gauges on walls.
+// External forces (the fluid's, SPEC §4) are held per sphere id and added to the
+// contact forces at every step until replaced.
 #pragma once
 #include "surge/dem/contact_linear_spring.hpp"
+#include "surge/dem/rigid_state.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 
 #include <cstdint>
@@ -46,6 +48,7 @@ struct Sphere {
   Vec3 pos{}, vel{}, omega{};
   Real radius = 0.01f;
   int material = 0;
+  bool fixed = false; // held in place (still feels contacts and the fluid, which are reported)
 };
 
 inline constexpr int max_contacts = 16; // history slots per sphere
@@ -73,6 +76,8 @@ struct DemView {
   ContactSlot *hist_old, *hist_new;
   std::uint32_t* broken;   // bonds this sphere has lost so far (each bond counts on both spheres)
   std::uint32_t* ncontact; // contacts of the last step
+  std::uint8_t* fixed;     // 1: not integrated
+  const Vec3 *ext_force, *ext_torque; // by sphere id
 };
 
 class DemSolver {
@@ -91,6 +96,12 @@ public:
   // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).
   [[nodiscard]] Real critical_dt(Real factor) const;
   void step(Real dt);
+  // External force and moment on each sphere, by id (n entries each, in the execution
+  // space), held until replaced; gravity is not included.
+  void set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque);
+  [[nodiscard]] std::vector<Vec3> external_forces() const { return par::download(ext_force_); }
+  // Centre, velocities and orientation of every sphere into out[id] (execution space).
+  void rigid_states(par::Buffer<RigidState>& out);
   // Current state by sphere id (host copies).
   [[nodiscard]] std::vector<Sphere> spheres() const;
   [[nodiscard]] std::vector<Vec3> forces() const; // contact forces of the last step, by id
@@ -120,7 +131,8 @@ private:
   Real max_radius_ = 0;
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;
   par::Buffer<Real> quat_, radius_, mass_, inertia_, tmp1_;
-  par::Buffer<std::uint8_t> material_, tmpb_;
+  par::Buffer<std::uint8_t> material_, fixed_, tmpb_;
+  par::Buffer<Vec3> ext_force_, ext_torque_;
   par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
   par::Buffer<ContactSlot> hist_old_, hist_new_, tmph_;
 };

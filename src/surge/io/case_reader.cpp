@@ -278,11 +278,12 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     for (std::size_t i = 0; i < packs.size(); ++i) {
       const std::string path = "dem.packs." + std::to_string(i);
       const YAML::Node pk = packs[i];
-      r.check_keys(pk, path, {"box", "radius", "jitter", "csv", "material", "velocity"});
+      r.check_keys(pk, path, {"box", "radius", "jitter", "csv", "material", "velocity", "fixed"});
       DemPackSpec ps;
       ps.line = pk.Mark().line + 1;
       ps.material = material(pk, path);
       ps.velocity = r.get(pk, path, "velocity", ps.velocity);
+      ps.fixed = r.get(pk, path, "fixed", false);
       if (pk["box"].IsDefined() == pk["csv"].IsDefined())
         r.fail(pk, path, "a pack needs exactly one of 'box' or 'csv'");
       if (pk["box"].IsDefined()) {
@@ -308,7 +309,7 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
 Case parse(const YAML::Node& root, Reader& r) {
   Case c;
   if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
-  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem"});
+  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem", "coupling"});
   c.name = r.require<std::string>(root, "", "name");
   if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos)
     r.fail(root["name"], "name", "must be a non-empty name without slashes");
@@ -459,7 +460,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < gauges.size(); ++i) {
       const std::string path = "gauges." + std::to_string(i);
       const YAML::Node g = gauges[i];
-      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall"});
+      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere"});
       GaugeSpec gs;
       gs.line = g.Mark().line + 1;
       gs.name = r.require<std::string>(g, path, "name");
@@ -481,10 +482,22 @@ Case parse(const YAML::Node& root, Reader& r) {
         gs.wall = r.require<std::string>(g, path, "wall");
         if (std::none_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) { return w.name == gs.wall; }))
           r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
+      } else if (type == "sphere") {
+        gs.type = GaugeType::Sphere;
+        gs.sphere = r.require<int>(g, path, "sphere");
+        if (gs.sphere < 0) r.fail(g["sphere"], path + ".sphere", "must not be negative");
+        gs.component = r.get<std::string>(g, path, "component", "z");
+        const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"};
+        if (ok.count(gs.component) == 0)
+          r.fail(g["component"], path + ".component",
+                 "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity) or fx, fy, fz (fluid force)");
       } else {
-        r.fail(g["type"], path + ".type", "unknown gauge type '" + type + "'; use height, pressure, velocity or force");
+        r.fail(g["type"], path + ".type",
+               "unknown gauge type '" + type + "'; use height, pressure, velocity, force or sphere");
       }
-      if (gs.type == GaugeType::Velocity || gs.type == GaugeType::Force) {
+      if (gs.type == GaugeType::Sphere) {
+        // component checked above
+      } else if (gs.type == GaugeType::Velocity || gs.type == GaugeType::Force) {
         gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
         if (gs.component != "x" && gs.component != "y" && gs.component != "z" && gs.component != "mag")
           r.fail(g["component"], path + ".component", "must be x, y, z or mag");
@@ -513,11 +526,16 @@ Case parse(const YAML::Node& root, Reader& r) {
     }
   }
   if (const auto d = root["dem"]; d.IsDefined()) parse_dem(r, d, c);
-  if (c.dem.active() && !c.fluid.empty())
-    r.fail(root["dem"], "dem",
-           "water and DEM spheres together need the SPH-DEM coupling, which is not implemented yet");
-  if (c.dem.active() && !c.gauges.empty())
-    r.fail(root["gauges"], "gauges", "gauges measure the water; a DEM-only case has none");
+  if (c.dem.active() && c.fluid.empty())
+    for (std::size_t i = 0; i < c.gauges.size(); ++i)
+      if (c.gauges[i].type != GaugeType::Sphere)
+        r.fail(root["gauges"][i], "gauges." + std::to_string(i),
+               "this gauge measures the water and a DEM-only case has none; use sphere gauges");
+  if (const auto cp = root["coupling"]; cp.IsDefined()) {
+    r.check_keys(cp, "coupling", {"body_layers"});
+    c.coupling.body_layers = r.get(cp, "coupling", "body_layers", 0);
+    if (c.coupling.body_layers < 0) r.fail(cp["body_layers"], "coupling.body_layers", "must not be negative");
+  }
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0))
@@ -633,6 +651,10 @@ std::string to_yaml(const Case& c) {
       e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
         << "component" << YAML::Value << g.component;
       break;
+    case GaugeType::Sphere:
+      e << YAML::Key << "type" << YAML::Value << "sphere" << YAML::Key << "sphere" << YAML::Value << g.sphere
+        << YAML::Key << "component" << YAML::Value << g.component;
+      break;
     }
     e << YAML::EndMap;
   }
@@ -683,10 +705,14 @@ std::string to_yaml(const Case& c) {
       e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(pk.material)].name;
       e << YAML::Key << "velocity" << YAML::Value;
       vec(pk.velocity);
+      if (pk.fixed) e << YAML::Key << "fixed" << YAML::Value << true;
       e << YAML::EndMap;
     }
     e << YAML::EndSeq << YAML::EndMap;
   }
+  if (c.coupling.body_layers > 0)
+    e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap << YAML::Key << "body_layers" << YAML::Value
+      << c.coupling.body_layers << YAML::EndMap;
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

@@ -7,6 +7,7 @@
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/io/vtk_writer.hpp"
+#include "surge/sim/dem_setup.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/simulation.hpp"
 
@@ -20,77 +21,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct DemSetup {
-  std::vector<dem::Material> materials;
-  std::vector<dem::Plane> planes;
-  std::vector<dem::WallTriangle> triangles;
-  std::vector<dem::Sphere> spheres;
-  bool bonded = false;
-  Vec3d origin{};
-};
-
-// Everything that can fail on input (meshes, sphere lists) fails here.
-DemSetup dem_setup(const Case& c) {
-  DemSetup s;
-  s.origin = c.domain.min;
-  auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
-  for (const auto& m : c.dem.materials) {
-    dem::Material mt;
-    mt.density = static_cast<Real>(m.density);
-    mt.young = static_cast<Real>(m.young);
-    mt.nu = static_cast<Real>(m.nu);
-    mt.tan_phi = static_cast<Real>(std::tan(m.phi_deg * dem::pi / 180.0));
-    mt.restitution = static_cast<Real>(m.restitution);
-    mt.k_roll = static_cast<Real>(m.k_roll);
-    mt.k_roll_max = static_cast<Real>(m.k_roll_max);
-    mt.k_twist = static_cast<Real>(m.k_twist);
-    mt.k_twist_max = static_cast<Real>(m.k_twist_max);
-    mt.bonded = m.bonded;
-    mt.bond_cn = static_cast<Real>(m.bond_cn);
-    mt.bond_cs = static_cast<Real>(m.bond_cs);
-    s.bonded = s.bonded || m.bonded;
-    s.materials.push_back(mt);
-  }
-  int mesh_index = 0;
-  for (const auto& w : c.dem.walls) {
-    if (!w.is_mesh) {
-      s.planes.push_back({local(w.point), Vec3(w.normal * (1.0 / norm(w.normal))), w.material});
-      continue;
-    }
-    for (const auto& t : geometry::read_stl(w.mesh_path).tris)
-      s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material});
-    ++mesh_index;
-  }
-  for (const auto& pk : c.dem.packs) {
-    const auto list =
-        pk.from_csv ? geometry::read_sphere_csv(pk.csv) : geometry::lattice_pack(pk.box, pk.radius, pk.jitter);
-    for (const auto& sp : list) {
-      if (!c.domain.contains(sp.centre))
-        throw InputError(c.source, pk.line, "dem.packs",
-                         "a sphere at (" + std::to_string(sp.centre.x) + ", " + std::to_string(sp.centre.y) + ", " +
-                             std::to_string(sp.centre.z) + ") lies outside the domain");
-      s.spheres.push_back({local(sp.centre), Vec3(pk.velocity), Vec3{}, static_cast<Real>(sp.radius), pk.material});
-    }
-  }
-  if (s.spheres.empty())
-    throw InputError(c.source, 0, "dem.packs", "the packs hold no sphere (box smaller than a sphere?)");
-  return s;
-}
-
-dem::DemSolver make_solver(const Case& c, const DemSetup& s) {
-  const Vec3 hi(c.domain.max - c.domain.min);
-  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
-  solver.set_wall_triangles(s.triangles);
-  solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
-  solver.set_spheres(s.spheres);
-  return solver;
-}
-
 } // namespace
 
 int check_dem(const Case& c) {
   const DemSetup s = dem_setup(c);
-  auto solver = make_solver(c, s);
+  auto solver = make_dem_solver(c, s);
   const double dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
   const double steps = c.time.end / dt;
   std::printf("case        %s (%s), DEM only\n", c.name.c_str(), c.source.c_str());
@@ -109,7 +44,8 @@ int run_dem(const Case& c, const RunOptions& opt) {
   if (opt.restart) throw InputError(c.source, 0, "", "restart is not available for DEM runs yet");
   const auto wall0 = Clock::now();
   const DemSetup setup = dem_setup(c);
-  auto solver = make_solver(c, setup);
+  check_sphere_gauges(c, setup.spheres.size());
+  auto solver = make_dem_solver(c, setup);
   const long bonds = setup.bonded ? solver.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
   const Real dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
 
@@ -138,30 +74,31 @@ int run_dem(const Case& c, const RunOptions& opt) {
       << ",\n  \"removed\": {\"total\": 0},\n  \"peak_rss_bytes\": " << peak_rss_bytes() << "\n}\n";
     io::write_file_atomic((out / "summary.json").string(), j.str());
   };
-  auto write_output = [&] {
-    io::SphereFrame f;
+  // Sphere gauges (the only kind a DEM-only case has): no fluid force.
+  std::vector<std::string> gauge_names;
+  for (const auto& g : c.gauges) gauge_names.push_back(g.name);
+  std::vector<std::vector<double>> rows;
+  auto sample_gauges = [&] {
     const auto sp = solver.spheres();
-    for (const auto& s : sp) {
-      f.pos.push_back(s.pos);
-      f.vel.push_back(s.vel);
-      f.omega.push_back(s.omega);
-      f.radius.push_back(s.radius);
-      f.material.push_back(static_cast<std::uint8_t>(s.material));
-    }
-    f.contacts = solver.contact_counts();
-    f.bonds = solver.intact_bonds();
-    for (std::size_t k = 0; k < sp.size(); ++k) f.id.push_back(static_cast<std::uint32_t>(k));
+    std::vector<double> row{t};
+    for (const auto& g : c.gauges) row.push_back(sphere_gauge_value(g, sp, {}, setup.origin));
+    rows.push_back(std::move(row));
+  };
+  auto write_output = [&] {
+    const io::SphereFrame f = sphere_frame(solver);
+    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
     char name[64];
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
     io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
     pvd.add(t, std::string("particles/") + name);
-    for (const auto& s : sp)
-      if (!std::isfinite(s.pos.x) || !std::isfinite(s.pos.y) || !std::isfinite(s.pos.z)) return false;
+    for (const auto& p : f.pos)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
     return true;
   };
+  if (!gauge_names.empty()) sample_gauges();
   write_output();
   write_summary();
-  double next_out = c.time.output_every;
+  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   const double eps = 1e-9 * c.time.end;
   auto last_report = Clock::now();
   while (t < c.time.end - eps) {
@@ -170,6 +107,10 @@ int run_dem(const Case& c, const RunOptions& opt) {
     solver.step(dt); // a fixed step: outputs fall on the first step at or after their time
     t += static_cast<double>(dt);
     ++steps;
+    if (!gauge_names.empty() && t >= next_gauge - eps) {
+      sample_gauges();
+      next_gauge += c.time.gauge_every;
+    }
     if (t >= next_out - eps) {
       next_out += c.time.output_every;
       if (!write_output()) {

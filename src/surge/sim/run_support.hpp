@@ -2,7 +2,9 @@
 #pragma once
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
+#include <vector>
 #include <sys/resource.h>
 
 namespace surge::sim {
@@ -32,6 +34,20 @@ inline std::string json_escape(const std::string& s) {
     out += ch;
   }
   return out;
+}
+
+// gauges.csv: a header of names after "time", one row per sample.
+inline std::string csv_text(const std::vector<std::string>& names, const std::vector<std::vector<double>>& rows) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "time";
+  for (const auto& n : names) s << "," << n;
+  s << "\n";
+  for (const auto& r : rows) {
+    for (std::size_t k = 0; k < r.size(); ++k) s << (k ? "," : "") << r[k];
+    s << "\n";
+  }
+  return s.str();
 }
 
 } // namespace surge::sim

@@ -7,6 +7,8 @@
 #include "surge/io/case_reader.hpp"
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
+#include "surge/coupling/sph_dem_coupling.hpp"
+#include "surge/sim/dem_setup.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
@@ -15,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <sys/resource.h>
 
@@ -35,17 +39,23 @@ struct Totals {
   [[nodiscard]] long removed() const { return removed_domain + removed_density + non_finite; }
 };
 
-std::string summary_json(const Case& c, const sph::InitialState& init, const std::string& status, int code, long steps,
-                         double t, double wall, const Totals& tot, int n_now, double rss, const std::string& message) {
+// Particle counts of a run beyond the fluid and wall ones of InitialState.
+struct ExtraCounts {
+  std::size_t body = 0, spheres = 0;
+};
+
+std::string summary_json(const Case& c, const sph::InitialState& init, const ExtraCounts& extra,
+                         const std::string& status, int code, long steps, double t, double wall, const Totals& tot,
+                         int n_now, double rss, const std::string& message) {
   std::ostringstream j;
   j.precision(10);
-  const double n_all = static_cast<double>(init.n_fluid + init.n_wall);
+  const double n_all = static_cast<double>(init.n_fluid + init.n_wall + extra.body);
   const std::string msg = json_escape(message);
   j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
     << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
     << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
     << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall
-    << ", \"body\": 0, \"sphere\": 0, \"now\": " << n_now << "},\n"
+    << ", \"body\": " << extra.body << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
     << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
     << "  \"particle_steps_per_second\": " << (wall > 0 ? n_all * static_cast<double>(steps) / wall : 0.0) << ",\n"
     << "  \"fluid_particle_steps_per_second\": "
@@ -60,17 +70,27 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const std
   return j.str();
 }
 
-std::string csv_text(const std::vector<std::string>& names, const std::vector<std::vector<double>>& rows) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "time";
-  for (const auto& n : names) s << "," << n;
-  s << "\n";
-  for (const auto& r : rows) {
-    for (std::size_t k = 0; k < r.size(); ++k) s << (k ? "," : "") << r[k];
-    s << "\n";
-  }
-  return s.str();
+// Share of spheres touching another one (gap below a tenth of the smaller radius);
+// brute force, on at most 20,000 spheres (beyond that the assembly counts as dense).
+double touching_share(const std::vector<dem::Sphere>& sp) {
+  if (sp.size() > 20000) return 1.0;
+  std::size_t touching = 0;
+  for (std::size_t i = 0; i < sp.size(); ++i)
+    for (std::size_t j = 0; j < sp.size(); ++j) {
+      if (i == j) continue;
+      const Real gap = norm(sp[i].pos - sp[j].pos) - sp[i].radius - sp[j].radius;
+      if (gap < Real(0.1) * std::min(sp[i].radius, sp[j].radius)) {
+        ++touching;
+        break;
+      }
+    }
+  return sp.empty() ? 0.0 : static_cast<double>(touching) / static_cast<double>(sp.size());
+}
+
+std::string fmt(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
 }
 
 double first_dt(const Case& c) {
@@ -81,15 +101,27 @@ double first_dt(const Case& c) {
 
 } // namespace
 
+
 int check(const Case& c) {
-  if (c.dem.active()) return check_dem(c);
-  const auto init = sph::build_initial_state(c);
-  const double n = static_cast<double>(init.n_fluid + init.n_wall);
+  if (c.dem.active() && !c.coupled()) return check_dem(c);
+  auto init = sph::build_initial_state(c);
+  std::optional<CoupledParts> cp;
+  if (c.coupled()) cp.emplace(c, init);
+  const double n_body = cp ? static_cast<double>(cp->coupling->n_body()) : 0.0;
+  const double n = static_cast<double>(init.n_fluid + init.n_wall) + n_body;
   const double dt0 = first_dt(c);
   const double steps = c.time.end / dt0;
   std::printf("case        %s (%s)\n", c.name.c_str(), c.source.c_str());
   std::printf("particles   %zu fluid, %zu wall (%d wall layers), %zu fluid particles dropped inside walls\n",
               init.n_fluid, init.n_wall, geometry::wall_layers(c), init.fluid_dropped_by_walls);
+  if (cp) {
+    std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "
+                "spheres\n",
+                cp->setup.spheres.size(), cp->bonds, cp->coupling->n_body(), cp->layers, cp->fluid_removed);
+    std::printf("DEM step    %.3g s (dt_factor %g): about %.0f DEM sub-steps per SPH step at the first dt\n",
+                static_cast<double>(cp->coupling->dt_dem()), c.dem.dt_factor,
+                std::ceil(dt0 / static_cast<double>(cp->coupling->dt_dem())));
+  }
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
@@ -107,20 +139,43 @@ int check(const Case& c) {
     warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
   if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
   if (!c.fluid.empty() && c.dp > c.water_depth() / 25)
-    warn("dp is coarser than 1/25 of the water depth (" + std::to_string(c.water_depth()) +
+    warn("dp is coarser than 1/25 of the water depth (" + fmt(c.water_depth()) +
          " m): the paper's guidance is dp <= depth/25");
+  if (cp) {
+    // Paper sect. 4: loose spheres need dp <= D/20, dense assemblies dp <= D/6 (D/8 better).
+    const auto& sp = cp->setup.spheres;
+    double dmin = 1e300;
+    for (const auto& x : sp) dmin = std::min(dmin, 2.0 * x.radius);
+    const bool dense = touching_share(sp) >= 0.5;
+    const double ratio = c.dp / dmin;
+    if (dense && ratio > 1.0 / 6 + 1e-9)
+      warn("dp = D/" + fmt(1 / ratio) + " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
+    else if (!dense && ratio > 1.0 / 20 + 1e-9)
+      warn("dp = D/" + fmt(1 / ratio) +
+           " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
+           "and drag (gap effect)");
+  }
   if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
   if (warnings == 0) std::printf("warnings    none\n");
   return 0;
 }
 
 int run(const Case& c, const RunOptions& opt) {
-  if (c.dem.active()) return run_dem(c, opt);
+  if (c.dem.active() && !c.coupled()) return run_dem(c, opt);
   const auto wall0 = Clock::now();
   // Everything that can fail on input happens before the output folder is touched.
-  const sph::InitialState init = sph::build_initial_state(c);
+  sph::InitialState init = sph::build_initial_state(c);
+  std::optional<CoupledParts> cp;
+  if (c.coupled()) {
+    if (opt.restart)
+      throw InputError(c.source, 0, "dem",
+                       "restart is not available for coupled SPH-DEM runs yet: the checkpoint holds the water only; "
+                       "run the case again");
+    cp.emplace(c, init);
+  }
   sph::WcsphSolver solver(c, init);
   sph::Gauges gauges(c, init);
+  const ExtraCounts extra{cp ? cp->coupling->n_body() : 0, cp ? cp->setup.spheres.size() : 0};
 
   namespace fs = std::filesystem;
   const fs::path out(opt.out_dir);
@@ -135,6 +190,8 @@ int run(const Case& c, const RunOptions& opt) {
   io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
   io::PvdCollection walls_pvd((out / "walls.pvd").string());
   io::PvdCollection fluid_pvd((out / "fluid.pvd").string());
+  std::optional<io::PvdCollection> spheres_pvd;
+  if (cp) spheres_pvd.emplace((out / "spheres.pvd").string());
   if (!opt.restart) {
     io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
     walls_pvd.add(0.0, "particles/walls_0000.vtp");
@@ -151,10 +208,16 @@ int run(const Case& c, const RunOptions& opt) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     io::write_file_atomic(
         (out / "summary.json").string(),
-        summary_json(c, init, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
+        summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
   };
   auto sample_gauges = [&] {
-    auto v = gauges.sample(solver);
+    std::vector<dem::Sphere> sp;
+    std::vector<Vec3> ff;
+    if (cp) {
+      sp = cp->dem->spheres();
+      ff = cp->coupling->fluid_forces();
+    }
+    auto v = gauges.sample(solver, [&](const GaugeSpec& g) { return sphere_gauge_value(g, sp, ff, init.origin); });
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };
@@ -181,6 +244,11 @@ int run(const Case& c, const RunOptions& opt) {
     std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
     io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
     fluid_pvd.add(t, std::string("particles/") + name);
+    if (cp) {
+      std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
+      io::write_spheres_vtp((out / "particles" / name).string(), sphere_frame(*cp->dem), init.origin);
+      spheres_pvd->add(t, std::string("particles/") + name);
+    }
     frame_times.push_back(t);
     io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
     rows_written = rows.size();
@@ -221,6 +289,7 @@ int run(const Case& c, const RunOptions& opt) {
     ck.particles = {};
     if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
   } else {
+    if (cp) cp->coupling->reduce_forces(solver, *cp->dem); // the fluid force at t = 0, for the gauges
     sample_gauges();
     write_output();
   }
@@ -235,6 +304,7 @@ int run(const Case& c, const RunOptions& opt) {
     if (c.time.max_steps > 0 && solver.step_count() >= c.time.max_steps) break;
     const double dt_max = std::min({next_out, next_gauge, c.time.end}) - t;
     const sph::StepStats s = solver.step(dt_max);
+    if (cp) cp->coupling->after_fluid_step(solver, *cp->dem, s.dt);
     t += s.dt;
     for (Totals* x : {&tot, &since_output}) {
       x->removed_domain += s.removed_domain;
@@ -247,7 +317,12 @@ int run(const Case& c, const RunOptions& opt) {
         }
       }
     }
-    if (s.non_finite > 0) {
+    if (cp && !cp->finite()) {
+      std::ostringstream m;
+      m << "diverged at t = " << t << " s (step " << solver.step_count()
+        << "): a DEM sphere has a non-finite position (try a smaller dem.dt_factor or sph.cfl)";
+      failure = m.str();
+    } else if (s.non_finite > 0) {
       std::ostringstream m;
       m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << s.non_finite
         << " particles have non-finite position, velocity or density";

@@ -19,7 +19,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
     } else if (g.type == GaugeType::Pressure || g.type == GaugeType::Velocity) {
       points_host_.push_back(Vec3(g.at - o));
       pr.n_samples = 1;
-    } else {
+    } else if (g.type == GaugeType::Force) {
       for (std::size_t w = 0; w < c.walls.size(); ++w)
         if (c.walls[w].name == g.wall) {
           pr.id0 = init.wall_ids[w].first;
@@ -32,7 +32,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   sums_.resize(points_host_.size());
 }
 
-std::vector<double> Gauges::sample(WcsphSolver& solver) {
+std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value) {
   solver.refresh();
   auto p = solver.view();
   const auto g = solver.grid_view();
@@ -78,6 +78,8 @@ std::vector<double> Gauges::sample(WcsphSolver& solver) {
           v = spec.component == "x" ? vel.x : spec.component == "y" ? vel.y : spec.component == "z" ? vel.z : norm(vel);
         }
       }
+    } else if (spec.type == GaugeType::Sphere) {
+      v = sphere_value ? sphere_value(spec) : 0.0;
     } else {
       const std::uint32_t id0 = pr.id0, id1 = pr.id1;
       const Real m = prm.mass;

@@ -4,6 +4,7 @@
 #include "surge/core/case.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,8 +35,9 @@ class Gauges {
 public:
   Gauges(const Case& c, const InitialState& init);
   [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
-  // One value per gauge for the solver's current state.
-  std::vector<double> sample(WcsphSolver& solver);
+  // One value per gauge for the solver's current state; sphere gauges (GaugeType::Sphere)
+  // read the DEM through `sphere_value`, which the coupled run loop supplies.
+  std::vector<double> sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value = {});
 
 private:
   struct Probe {

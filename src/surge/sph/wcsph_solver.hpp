@@ -52,6 +52,8 @@ public:
   void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
   void refresh();
+  // Positions were changed from outside (body particles moved): rates must be recomputed.
+  void invalidate() { fresh_ = false; }
 
   // Timing of the last steps, seconds: neighbour search + sort, everything.
   double time_sort = 0, time_total = 0;

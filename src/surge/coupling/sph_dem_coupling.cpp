@@ -1,0 +1,98 @@
+#include "surge/coupling/sph_dem_coupling.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace surge::coupling {
+namespace detail {
+// Free functions: nvcc's extended lambdas may not live in private member functions.
+
+// slot[id - first] = i for every body particle i of the SPH arrays (ids are unique, so
+// each particle writes its own entry).
+void index_bodies(const particles::ParticleView& p, std::uint32_t first, std::uint32_t* slot) {
+  const auto body = static_cast<std::uint8_t>(Kind::Body);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] == body) slot[p.id[i] - first] = static_cast<std::uint32_t>(i);
+      });
+}
+
+void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint32_t* start,
+                    const std::uint32_t* slot, const dem::RigidState* state, int n_spheres, Vec3* force,
+                    Vec3* moment) {
+  par::parallel_for(
+      n_spheres, SURGE_LAMBDA(int k) {
+        Vec3 f{}, m{};
+        const Vec3 xk = state[k].pos;
+        for (std::uint32_t b = start[k]; b < start[k + 1]; ++b) {
+          const std::uint32_t i = slot[b];
+          const Vec3 fb = p.acc[i] * mass; // body accelerations carry no gravity (wcsph_rates)
+          f += fb;
+          m += cross(p.pos[i] - xk, fb);
+        }
+        force[k] = f;
+        moment[k] = m;
+      });
+}
+
+void place(const particles::ParticleView& p, std::uint32_t first, const Vec3* offset, const std::uint32_t* owner,
+           const dem::RigidState* state) {
+  const auto body = static_cast<std::uint8_t>(Kind::Body);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] != body) return;
+        const std::uint32_t b = p.id[i] - first;
+        const dem::RigidPoint r = dem::rigid_point(state[owner[b]], offset[b]);
+        p.pos[i] = r.pos;
+        p.vel[i] = r.vel;
+      });
+}
+} // namespace detail
+
+SphDemCoupling::SphDemCoupling(const BodyLayout& layout, int n_spheres, Real dt_dem)
+    : first_id_(layout.first_id), n_body_(layout.size()), n_spheres_(n_spheres), dt_dem_(dt_dem) {
+  if (layout.start.size() != static_cast<std::size_t>(n_spheres) + 1)
+    throw std::invalid_argument("body layout does not match the number of spheres");
+  if (!(dt_dem > 0)) throw std::invalid_argument("the DEM time step must be positive");
+  par::upload(offset_, layout.offset);
+  par::upload(owner_, layout.owner);
+  par::upload(start_, layout.start);
+  slot_.resize(n_body_);
+  force_.resize(static_cast<std::size_t>(n_spheres));
+  moment_.resize(static_cast<std::size_t>(n_spheres));
+  par::fill(force_, Vec3{});
+  par::fill(moment_, Vec3{});
+}
+
+void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
+  sph.refresh(); // accelerations must describe the current body positions
+  sum_forces(sph, dem);
+}
+
+void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
+  const auto p = sph.view();
+  detail::index_bodies(p, first_id_, slot_.data());
+  dem.rigid_states(state_);
+  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_,
+                         force_.data(), moment_.data());
+  dem.set_external(force_, moment_);
+}
+
+void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {
+  dem.rigid_states(state_);
+  detail::place(sph.view(), first_id_, offset_.data(), owner_.data(), state_.data());
+  sph.invalidate();
+}
+
+int SphDemCoupling::after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt) {
+  // The arrays still hold the rates of this step's start (the fluid has moved since,
+  // the body particles have not): no refresh here.
+  sum_forces(sph, dem);
+  const int n_sub = std::max(1, static_cast<int>(std::ceil(dt / static_cast<double>(dt_dem_) - 1e-9)));
+  const auto h = static_cast<Real>(dt / n_sub);
+  for (int k = 0; k < n_sub; ++k) dem.step(h);
+  place_bodies(sph, dem);
+  return n_sub;
+}
+
+} // namespace surge::coupling

@@ -1,0 +1,120 @@
+#include "surge/sim/dem_setup.hpp"
+
+#include "surge/core/error.hpp"
+#include "surge/geometry/sphere_packs.hpp"
+#include "surge/geometry/stl_mesh.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace surge::sim {
+
+DemSetup dem_setup(const Case& c) {
+  DemSetup s;
+  s.origin = c.domain.min;
+  auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
+  for (const auto& m : c.dem.materials) {
+    dem::Material mt;
+    mt.density = static_cast<Real>(m.density);
+    mt.young = static_cast<Real>(m.young);
+    mt.nu = static_cast<Real>(m.nu);
+    mt.tan_phi = static_cast<Real>(std::tan(m.phi_deg * dem::pi / 180.0));
+    mt.restitution = static_cast<Real>(m.restitution);
+    mt.k_roll = static_cast<Real>(m.k_roll);
+    mt.k_roll_max = static_cast<Real>(m.k_roll_max);
+    mt.k_twist = static_cast<Real>(m.k_twist);
+    mt.k_twist_max = static_cast<Real>(m.k_twist_max);
+    mt.bonded = m.bonded;
+    mt.bond_cn = static_cast<Real>(m.bond_cn);
+    mt.bond_cs = static_cast<Real>(m.bond_cs);
+    s.bonded = s.bonded || m.bonded;
+    s.materials.push_back(mt);
+  }
+  int mesh_index = 0;
+  for (const auto& w : c.dem.walls) {
+    if (!w.is_mesh) {
+      s.planes.push_back({local(w.point), Vec3(w.normal * (1.0 / norm(w.normal))), w.material});
+      continue;
+    }
+    for (const auto& t : geometry::read_stl(w.mesh_path).tris)
+      s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material});
+    ++mesh_index;
+  }
+  for (const auto& pk : c.dem.packs) {
+    const auto list =
+        pk.from_csv ? geometry::read_sphere_csv(pk.csv) : geometry::lattice_pack(pk.box, pk.radius, pk.jitter);
+    for (const auto& sp : list) {
+      if (!c.domain.contains(sp.centre))
+        throw InputError(c.source, pk.line, "dem.packs",
+                         "a sphere at (" + std::to_string(sp.centre.x) + ", " + std::to_string(sp.centre.y) + ", " +
+                             std::to_string(sp.centre.z) + ") lies outside the domain");
+      s.spheres.push_back(
+          {local(sp.centre), Vec3(pk.velocity), Vec3{}, static_cast<Real>(sp.radius), pk.material, pk.fixed});
+    }
+  }
+  if (s.spheres.empty())
+    throw InputError(c.source, 0, "dem.packs", "the packs hold no sphere (box smaller than a sphere?)");
+  return s;
+}
+
+dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {
+  const Vec3 hi(c.domain.max - c.domain.min);
+  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
+  solver.set_wall_triangles(s.triangles);
+  solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
+  solver.set_spheres(s.spheres);
+  return solver;
+}
+
+io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
+  io::SphereFrame f;
+  const auto sp = solver.spheres();
+  for (const auto& s : sp) {
+    f.pos.push_back(s.pos);
+    f.vel.push_back(s.vel);
+    f.omega.push_back(s.omega);
+    f.radius.push_back(s.radius);
+    f.material.push_back(static_cast<std::uint8_t>(s.material));
+  }
+  f.contacts = solver.contact_counts();
+  f.bonds = solver.intact_bonds();
+  for (std::size_t k = 0; k < sp.size(); ++k) f.id.push_back(static_cast<std::uint32_t>(k));
+  return f;
+}
+
+void check_sphere_gauges(const Case& c, std::size_t n_spheres) {
+  for (const auto& g : c.gauges)
+    if (g.type == GaugeType::Sphere && static_cast<std::size_t>(g.sphere) >= n_spheres)
+      throw InputError(c.source, g.line, "gauges." + g.name + ".sphere",
+                       "sphere " + std::to_string(g.sphere) + " does not exist: the packs hold " +
+                           std::to_string(n_spheres) + " spheres (numbered from 0)");
+}
+
+double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
+                          const Vec3d& origin) {
+  const auto k = static_cast<std::size_t>(g.sphere);
+  const char axis = g.component.back();
+  const int a = axis == 'x' ? 0 : axis == 'y' ? 1 : 2;
+  if (g.component.size() == 1) return origin[a] + static_cast<double>(spheres[k].pos[a]);
+  if (g.component[0] == 'v') return spheres[k].vel[a];
+  return k < fluid_force.size() ? static_cast<double>(fluid_force[k][a]) : 0.0;
+}
+
+CoupledParts::CoupledParts(const Case& c, sph::InitialState& init) : setup(dem_setup(c)) {
+  check_sphere_gauges(c, setup.spheres.size());
+  layers = c.coupling.body_layers > 0 ? c.coupling.body_layers : coupling::default_layers(c.h(), c.dp);
+  auto body = coupling::add_body_particles(c, setup.spheres, layers, init);
+  fluid_removed = body.fluid_removed;
+  dem = std::make_unique<dem::DemSolver>(make_dem_solver(c, setup));
+  if (setup.bonded) bonds = dem->bond_touching(static_cast<Real>(c.dem.bond_gap));
+  const Real dt_dem = dem->critical_dt(static_cast<Real>(c.dem.dt_factor));
+  coupling = std::make_unique<coupling::SphDemCoupling>(body.layout, static_cast<int>(setup.spheres.size()), dt_dem);
+}
+
+bool CoupledParts::finite() const {
+  for (const auto& s : dem->spheres())
+    if (!std::isfinite(s.pos.x) || !std::isfinite(s.pos.y) || !std::isfinite(s.pos.z)) return false;
+  return true;
+}
+
+} // namespace surge::sim

@@ -1,0 +1,48 @@
+// DEM set-up shared by DEM-only and coupled runs: case -> materials, walls, spheres,
+// and the solver; one sphere frame for output.
+#pragma once
+#include "surge/core/case.hpp"
+#include "surge/coupling/sph_dem_coupling.hpp"
+#include "surge/dem/dem_solver.hpp"
+#include "surge/io/vtk_writer.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace surge::sim {
+
+struct DemSetup {
+  std::vector<dem::Material> materials;
+  std::vector<dem::Plane> planes;
+  std::vector<dem::WallTriangle> triangles;
+  std::vector<dem::Sphere> spheres; // local coordinates (absolute - origin)
+  bool bonded = false;
+  Vec3d origin{};
+};
+
+// Everything that can fail on input (meshes, sphere lists) fails here.
+DemSetup dem_setup(const Case& c);
+dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s);
+// The spheres' current state, by id, for write_spheres_vtp.
+io::SphereFrame sphere_frame(const dem::DemSolver& solver);
+// Checks that every sphere gauge names an existing sphere.
+void check_sphere_gauges(const Case& c, std::size_t n_spheres);
+// Value of a sphere gauge: centre (absolute), velocity or fluid force component.
+double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
+                          const Vec3d& origin);
+
+// The DEM half of a coupled run: spheres, their solver and the body particles that
+// carry them into the water. Construction adds the body particles to `init` (and
+// removes the water inside the spheres), so it comes before the SPH solver is built.
+struct CoupledParts {
+  DemSetup setup;
+  std::unique_ptr<dem::DemSolver> dem;
+  std::unique_ptr<coupling::SphDemCoupling> coupling;
+  long bonds = 0;
+  std::size_t fluid_removed = 0;
+  int layers = 0;
+  CoupledParts(const Case& c, sph::InitialState& init);
+  [[nodiscard]] bool finite() const;
+};
+
+} // namespace surge::sim
