@@ -55,7 +55,7 @@ struct WallSpec {
   std::string name; // for force gauges
   bool is_mesh = false;
   Box box;                // box walls: the tank interior, or the solid obstacle
-  bool solid = false;     // box: particles fill the inside instead of surrounding it
+  bool solid = false;     // box: particles fill the inside instead of surrounding it; mesh: no water behind it
   std::vector<Face> open; // box tank: faces left without wall
   std::string mesh;       // as written in the case file
   std::string mesh_path;  // resolved against the case file's folder
@@ -69,7 +69,7 @@ struct GaugeSpec {
   GaugeType type = GaugeType::Height;
   double x = 0, y = 0;         // height gauges
   Vec3d at{};                  // pressure / velocity gauges
-  std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz
+  std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
   std::string wall;            // force gauges: name of the wall
   int sphere = 0;              // sphere gauges: index of the sphere (packs in order, spheres in pack order)
   int line = 0;

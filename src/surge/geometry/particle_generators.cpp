@@ -120,7 +120,7 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {
   if (w.is_mesh) {
     const double d = signed_distance(*mesh, p);
-    return d < 0.5 * dp && d > -4 * dp;
+    return d < 0.5 * dp && (w.solid || d > -4 * dp);
   }
   return w.solid && w.box.contains(p, 0.5 * dp);
 }

@@ -419,8 +419,10 @@ Case parse(const YAML::Node& root, Reader& r) {
           for (std::size_t k = 0; k < o.size(); ++k) ws.open.push_back(parse_face(r, o[k], path + ".open"));
         }
       } else {
-        if (w["open"].IsDefined() || w["solid"].IsDefined())
-          r.fail(w, path, "'open' and 'solid' apply to box walls only");
+        if (w["open"].IsDefined()) r.fail(w["open"], path + ".open", "'open' applies to box walls only");
+        // A solid mesh: everything behind its surface (negative signed distance) is wall,
+        // so no water is made there (a slope with ground under it).
+        ws.solid = r.get(w, path, "solid", false);
         ws.is_mesh = true;
         ws.mesh = r.as<std::string>(w["mesh"], path + ".mesh");
         std::filesystem::path mp(ws.mesh);
@@ -487,10 +489,11 @@ Case parse(const YAML::Node& root, Reader& r) {
         gs.sphere = r.require<int>(g, path, "sphere");
         if (gs.sphere < 0) r.fail(g["sphere"], path + ".sphere", "must not be negative");
         gs.component = r.get<std::string>(g, path, "component", "z");
-        const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"};
+        const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
         if (ok.count(gs.component) == 0)
           r.fail(g["component"], path + ".component",
-                 "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity) or fx, fy, fz (fluid force)");
+                 "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
+                 "mz (fluid moment about the centre)");
       } else {
         r.fail(g["type"], path + ".type",
                "unknown gauge type '" + type + "'; use height, pressure, velocity, force or sphere");
@@ -621,6 +624,7 @@ std::string to_yaml(const Case& c) {
     e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << w.name;
     if (w.is_mesh) {
       e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+      if (w.solid) e << YAML::Key << "solid" << YAML::Value << true;
     } else {
       e << YAML::Key << "box" << YAML::Value;
       box(w.box);

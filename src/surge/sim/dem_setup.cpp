@@ -91,13 +91,14 @@ void check_sphere_gauges(const Case& c, std::size_t n_spheres) {
 }
 
 double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
-                          const Vec3d& origin) {
+                          const std::vector<Vec3>& fluid_moment, const Vec3d& origin) {
   const auto k = static_cast<std::size_t>(g.sphere);
   const char axis = g.component.back();
   const int a = axis == 'x' ? 0 : axis == 'y' ? 1 : 2;
   if (g.component.size() == 1) return origin[a] + static_cast<double>(spheres[k].pos[a]);
   if (g.component[0] == 'v') return spheres[k].vel[a];
-  return k < fluid_force.size() ? static_cast<double>(fluid_force[k][a]) : 0.0;
+  const std::vector<Vec3>& f = g.component[0] == 'f' ? fluid_force : fluid_moment;
+  return k < f.size() ? static_cast<double>(f[k][a]) : 0.0;
 }
 
 CoupledParts::CoupledParts(const Case& c, sph::InitialState& init) : setup(dem_setup(c)) {

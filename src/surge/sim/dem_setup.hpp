@@ -27,9 +27,10 @@ dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s);
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 // Checks that every sphere gauge names an existing sphere.
 void check_sphere_gauges(const Case& c, std::size_t n_spheres);
-// Value of a sphere gauge: centre (absolute), velocity or fluid force component.
+// Value of a sphere gauge: centre (absolute), velocity, fluid force or fluid moment
+// (about the centre) component; force and moment read 0 without water.
 double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
-                          const Vec3d& origin);
+                          const std::vector<Vec3>& fluid_moment, const Vec3d& origin);
 
 // The DEM half of a coupled run: spheres, their solver and the body particles that
 // carry them into the water. Construction adds the body particles to `init` (and

@@ -212,12 +212,13 @@ int run(const Case& c, const RunOptions& opt) {
   };
   auto sample_gauges = [&] {
     std::vector<dem::Sphere> sp;
-    std::vector<Vec3> ff;
+    std::vector<Vec3> ff, fm;
     if (cp) {
       sp = cp->dem->spheres();
       ff = cp->coupling->fluid_forces();
+      fm = cp->coupling->fluid_moments();
     }
-    auto v = gauges.sample(solver, [&](const GaugeSpec& g) { return sphere_gauge_value(g, sp, ff, init.origin); });
+    auto v = gauges.sample(solver, [&](const GaugeSpec& g) { return sphere_gauge_value(g, sp, ff, fm, init.origin); });
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };
