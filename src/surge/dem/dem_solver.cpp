@@ -3,6 +3,7 @@
 #include "surge/geometry/closest_point.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -443,6 +444,82 @@ void DemSolver::step(Real dt) {
                    reach(), dt);
   detail::integrate(v, gravity_, local_damping_, dt);
   hist_old_.swap(hist_new_);
+}
+
+namespace {
+// Appends / reads one buffer: element count, then raw elements.
+template <class T>
+void save_buffer(std::string& out, const par::Buffer<T>& b) {
+  const auto v = par::download(b);
+  const std::uint64_t n = v.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
+}
+template <class T>
+void load_buffer(const std::string& in, std::size_t& pos, par::Buffer<T>& b, std::size_t expect) {
+  std::uint64_t n = 0;
+  if (pos + sizeof n > in.size()) throw std::invalid_argument("DEM state truncated");
+  std::memcpy(&n, in.data() + pos, sizeof n);
+  pos += sizeof n;
+  if (n != expect || pos + n * sizeof(T) > in.size())
+    throw std::invalid_argument("DEM state does not match this case (sphere count or truncated data)");
+  std::vector<T> v(n);
+  std::memcpy(v.data(), in.data() + pos, n * sizeof(T));
+  pos += n * sizeof(T);
+  par::upload(b, v);
+}
+} // namespace
+
+std::string DemSolver::save() const {
+  std::string out;
+  const auto n = static_cast<std::uint64_t>(n_);
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  save_buffer(out, pos_);
+  save_buffer(out, vel_);
+  save_buffer(out, omega_);
+  save_buffer(out, quat_);
+  save_buffer(out, radius_);
+  save_buffer(out, mass_);
+  save_buffer(out, inertia_);
+  save_buffer(out, material_);
+  save_buffer(out, fixed_);
+  save_buffer(out, id_);
+  save_buffer(out, broken_);
+  save_buffer(out, ncontact_);
+  save_buffer(out, force_);
+  save_buffer(out, torque_);
+  save_buffer(out, ext_force_);
+  save_buffer(out, ext_torque_);
+  save_buffer(out, hist_old_);
+  return out;
+}
+
+void DemSolver::restore(const std::string& bytes) {
+  std::uint64_t n = 0;
+  if (bytes.size() < sizeof n) throw std::invalid_argument("DEM state truncated");
+  std::memcpy(&n, bytes.data(), sizeof n);
+  if (n != static_cast<std::uint64_t>(n_)) throw std::invalid_argument("DEM state holds another number of spheres");
+  std::size_t pos = sizeof n;
+  const auto N = static_cast<std::size_t>(n_);
+  load_buffer(bytes, pos, pos_, N);
+  load_buffer(bytes, pos, vel_, N);
+  load_buffer(bytes, pos, omega_, N);
+  load_buffer(bytes, pos, quat_, 4 * N);
+  load_buffer(bytes, pos, radius_, N);
+  load_buffer(bytes, pos, mass_, N);
+  load_buffer(bytes, pos, inertia_, N);
+  load_buffer(bytes, pos, material_, N);
+  load_buffer(bytes, pos, fixed_, N);
+  load_buffer(bytes, pos, id_, N);
+  load_buffer(bytes, pos, broken_, N);
+  load_buffer(bytes, pos, ncontact_, N);
+  load_buffer(bytes, pos, force_, N);
+  load_buffer(bytes, pos, torque_, N);
+  load_buffer(bytes, pos, ext_force_, N);
+  load_buffer(bytes, pos, ext_torque_, N);
+  load_buffer(bytes, pos, hist_old_, N * max_contacts);
+  if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
+  hist_new_.resize(N * max_contacts);
 }
 
 void DemSolver::set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque) {

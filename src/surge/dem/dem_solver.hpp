@@ -13,6 +13,7 @@
 #include "surge/neighbour/uniform_grid.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace surge::dem {
@@ -100,6 +101,11 @@ public:
   // space), held until replaced; gravity is not included.
   void set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque);
   [[nodiscard]] std::vector<Vec3> external_forces() const { return par::download(ext_force_); }
+  // The complete state (spheres, orientations, contact history, broken bonds, external
+  // forces) as bytes, and back: a restored solver continues bit for bit. restore() needs a
+  // solver built from the same case (materials, walls, sphere count).
+  [[nodiscard]] std::string save() const;
+  void restore(const std::string& bytes);
   // Centre, velocities and orientation of every sphere into out[id] (execution space).
   void rigid_states(par::Buffer<RigidState>& out);
   // Current state by sphere id (host copies).

@@ -10,7 +10,7 @@
 namespace surge::io {
 namespace {
 
-constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '1'};
+constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '2'}; // 2: with the DEM state
 
 class Writer {
 public:
@@ -84,6 +84,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.put_vec(p.rho_prev);
   w.put_vec(p.kind);
   w.put_vec(p.id);
+  w.put_vec(std::vector<char>(c.dem_state.begin(), c.dem_state.end()));
   write_file_atomic(path, w.bytes_);
 }
 
@@ -120,6 +121,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.rho_prev = r.get_vec<Real>();
   p.kind = r.get_vec<std::uint8_t>();
   p.id = r.get_vec<std::uint32_t>();
+  const auto dem = r.get_vec<char>();
+  c.dem_state.assign(dem.begin(), dem.end());
   const auto n = p.pos.size();
   if (p.vel.size() != n || p.vel_prev.size() != n || p.rho.size() != n || p.rho_prev.size() != n ||
       p.kind.size() != n || p.id.size() != n || !r.done())

@@ -16,6 +16,7 @@ struct Checkpoint {
   std::vector<std::vector<double>> gauge_rows;
   long removed_domain = 0, removed_density = 0, non_finite = 0;
   particles::HostParticles particles; // with vel_prev / rho_prev
+  std::string dem_state;              // coupled runs: DemSolver::save(), opaque; empty otherwise
 };
 
 // Binary, little-endian, written atomically.

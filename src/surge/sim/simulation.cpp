@@ -20,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <sys/resource.h>
 
 namespace surge::sim {
@@ -166,13 +167,7 @@ int run(const Case& c, const RunOptions& opt) {
   // Everything that can fail on input happens before the output folder is touched.
   sph::InitialState init = sph::build_initial_state(c);
   std::optional<CoupledParts> cp;
-  if (c.coupled()) {
-    if (opt.restart)
-      throw InputError(c.source, 0, "dem",
-                       "restart is not available for coupled SPH-DEM runs yet: the checkpoint holds the water only; "
-                       "run the case again");
-    cp.emplace(c, init);
-  }
+  if (c.coupled()) cp.emplace(c, init);
   sph::WcsphSolver solver(c, init);
   sph::Gauges gauges(c, init);
   const ExtraCounts extra{cp ? cp->coupling->n_body() : 0, cp ? cp->setup.spheres.size() : 0};
@@ -185,6 +180,20 @@ int run(const Case& c, const RunOptions& opt) {
     if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges.names().size() + 1)
       throw InputError((out / "checkpoint.bin").string(), 0, "gauges",
                        "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
+    if (ck.dem_state.empty() != !cp)
+      throw InputError((out / "checkpoint.bin").string(), 0, "dem",
+                       cp ? "the checkpoint holds no DEM spheres but the case has them; restart with the case.yaml of "
+                            "that run"
+                          : "the checkpoint holds DEM spheres but the case has none; restart with the case.yaml of "
+                            "that run");
+    if (cp) {
+      try {
+        cp->dem->restore(ck.dem_state);
+      } catch (const std::invalid_argument& e) {
+        throw InputError((out / "checkpoint.bin").string(), 0, "dem",
+                         std::string(e.what()) + "; restart with the case.yaml of that run");
+      }
+    }
   }
   fs::create_directories(out / "particles");
   io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
@@ -236,6 +245,7 @@ int run(const Case& c, const RunOptions& opt) {
     k.removed_density = tot.removed_density;
     k.non_finite = tot.non_finite;
     solver.download(k.particles, true);
+    if (cp) k.dem_state = cp->dem->save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
   };
   auto write_output = [&] {
@@ -286,6 +296,10 @@ int run(const Case& c, const RunOptions& opt) {
     }
     fluid_pvd.restore(entries);
     walls_pvd.restore({{0.0, "particles/walls_0000.vtp"}});
+    if (cp) {
+      for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
+      spheres_pvd->restore(entries);
+    }
     solver.restore(ck.particles, ck.steps);
     ck.particles = {};
     if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
@@ -346,8 +360,8 @@ int run(const Case& c, const RunOptions& opt) {
       next_gauge += c.time.gauge_every;
     }
     if (t >= next_out - eps) {
+      next_out += c.time.output_every; // before the checkpoint is written: a restart continues from here
       write_output();
-      next_out += c.time.output_every;
     }
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_report).count();
