@@ -17,6 +17,8 @@ for threads in 1 2; do
   # DEM: spheres touching on a lattice, settling, full contact model.
   build/cpu/benchmarks/bench_dem 20000 2000 $threads | tee -a "$out"
   build/cpu/benchmarks/bench_dem 100000 2000 $threads | tee -a "$out"
+  # Coupled SPH-DEM step against the same water without spheres, 0 to 1e4 spheres.
+  for n in 0 100 1000 10000; do build/cpu/benchmarks/bench_coupling $n 20 $threads | tee -a "$out"; done
   # Neighbour search alone, 1e6 particles.
   build/cpu/benchmarks/bench_neighbour 1000000 $threads | tee -a "$out"
 done
