@@ -36,7 +36,9 @@ namespace {
 struct SphereHash {
   double cell;
   std::unordered_map<long long, std::vector<int>> cells;
-  static long long key(long long i, long long j, long long k) { return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL); }
+  static long long key(long long i, long long j, long long k) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
+  }
   [[nodiscard]] long long idx(double v) const { return static_cast<long long>(std::floor(v / cell)); }
 };
 } // namespace

@@ -17,9 +17,8 @@ void index_bodies(const particles::ParticleView& p, std::uint32_t first, std::ui
       });
 }
 
-void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint32_t* start,
-                    const std::uint32_t* slot, const dem::RigidState* state, int n_spheres, Vec3* force,
-                    Vec3* moment) {
+void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint32_t* start, const std::uint32_t* slot,
+                    const dem::RigidState* state, int n_spheres, Vec3* force, Vec3* moment) {
   par::parallel_for(
       n_spheres, SURGE_LAMBDA(int k) {
         Vec3 f{}, m{};
@@ -73,8 +72,8 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto p = sph.view();
   detail::index_bodies(p, first_id_, slot_.data());
   dem.rigid_states(state_);
-  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_,
-                         force_.data(), moment_.data());
+  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_, force_.data(),
+                         moment_.data());
   dem.set_external(force_, moment_);
 }
 

@@ -32,7 +32,7 @@ public:
   // reduce_forces, DEM sub-steps over dt, place_bodies. Returns the number of sub-steps.
   int after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt);
 
-  [[nodiscard]] std::vector<Vec3> fluid_forces() const { return par::download(force_); }  // by sphere id
+  [[nodiscard]] std::vector<Vec3> fluid_forces() const { return par::download(force_); }   // by sphere id
   [[nodiscard]] std::vector<Vec3> fluid_moments() const { return par::download(moment_); } // about the centres
   [[nodiscard]] std::size_t n_body() const { return n_body_; }
   [[nodiscard]] Real dt_dem() const { return dt_dem_; }

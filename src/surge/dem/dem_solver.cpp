@@ -3,8 +3,8 @@
 #include "surge/geometry/closest_point.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 

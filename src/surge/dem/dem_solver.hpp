@@ -75,9 +75,9 @@ struct DemView {
   std::uint8_t* material;
   std::uint32_t* id;
   ContactSlot *hist_old, *hist_new;
-  std::uint32_t* broken;   // bonds this sphere has lost so far (each bond counts on both spheres)
-  std::uint32_t* ncontact; // contacts of the last step
-  std::uint8_t* fixed;     // 1: not integrated
+  std::uint32_t* broken;              // bonds this sphere has lost so far (each bond counts on both spheres)
+  std::uint32_t* ncontact;            // contacts of the last step
+  std::uint8_t* fixed;                // 1: not integrated
   const Vec3 *ext_force, *ext_torque; // by sphere id
 };
 

@@ -309,7 +309,8 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
 Case parse(const YAML::Node& root, Reader& r) {
   Case c;
   if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
-  r.check_keys(root, "", {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem", "coupling"});
+  r.check_keys(root, "",
+               {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem", "coupling"});
   c.name = r.require<std::string>(root, "", "name");
   if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos)
     r.fail(root["name"], "name", "must be a non-empty name without slashes");

@@ -90,8 +90,9 @@ void check_sphere_gauges(const Case& c, std::size_t n_spheres) {
                            std::to_string(n_spheres) + " spheres (numbered from 0)");
 }
 
-double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
-                          const std::vector<Vec3>& fluid_moment, const Vec3d& origin) {
+double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres,
+                          const std::vector<Vec3>& fluid_force, const std::vector<Vec3>& fluid_moment,
+                          const Vec3d& origin) {
   const auto k = static_cast<std::size_t>(g.sphere);
   const char axis = g.component.back();
   const int a = axis == 'x' ? 0 : axis == 'y' ? 1 : 2;

@@ -29,8 +29,9 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 void check_sphere_gauges(const Case& c, std::size_t n_spheres);
 // Value of a sphere gauge: centre (absolute), velocity, fluid force or fluid moment
 // (about the centre) component; force and moment read 0 without water.
-double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres, const std::vector<Vec3>& fluid_force,
-                          const std::vector<Vec3>& fluid_moment, const Vec3d& origin);
+double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& spheres,
+                          const std::vector<Vec3>& fluid_force, const std::vector<Vec3>& fluid_moment,
+                          const Vec3d& origin);
 
 // The DEM half of a coupled run: spheres, their solver and the body particles that
 // carry them into the water. Construction adds the body particles to `init` (and

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
-#include <vector>
 #include <sys/resource.h>
+#include <vector>
 
 namespace surge::sim {
 

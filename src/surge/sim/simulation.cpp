@@ -2,12 +2,12 @@
 
 #include "surge/core/error.hpp"
 #include "surge/core/version.hpp"
+#include "surge/coupling/sph_dem_coupling.hpp"
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
-#include "surge/coupling/sph_dem_coupling.hpp"
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sph/gauges.hpp"
@@ -55,8 +55,8 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const Ext
   j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
     << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
     << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
-    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall
-    << ", \"body\": " << extra.body << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
+    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": " << extra.body
+    << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
     << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
     << "  \"particle_steps_per_second\": " << (wall > 0 ? n_all * static_cast<double>(steps) / wall : 0.0) << ",\n"
     << "  \"fluid_particle_steps_per_second\": "
@@ -101,7 +101,6 @@ double first_dt(const Case& c) {
 }
 
 } // namespace
-
 
 int check(const Case& c) {
   if (c.dem.active() && !c.coupled()) return check_dem(c);
@@ -150,7 +149,8 @@ int check(const Case& c) {
     const bool dense = touching_share(sp) >= 0.5;
     const double ratio = c.dp / dmin;
     if (dense && ratio > 1.0 / 6 + 1e-9)
-      warn("dp = D/" + fmt(1 / ratio) + " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
+      warn("dp = D/" + fmt(1 / ratio) +
+           " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
     else if (!dense && ratio > 1.0 / 20 + 1e-9)
       warn("dp = D/" + fmt(1 / ratio) +
            " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
@@ -215,9 +215,9 @@ int run(const Case& c, const RunOptions& opt) {
   std::vector<double> frame_times;
   auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    io::write_file_atomic(
-        (out / "summary.json").string(),
-        summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, solver.size(), peak_rss_bytes(), msg));
+    io::write_file_atomic((out / "summary.json").string(),
+                          summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, solver.size(),
+                                       peak_rss_bytes(), msg));
   };
   auto sample_gauges = [&] {
     std::vector<dem::Sphere> sp;
