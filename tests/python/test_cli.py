@@ -155,6 +155,19 @@ check(abs(np.linalg.norm(s0["velocity"], axis=1).mean() - 1.0) < 1e-5, "initial 
 check(s1["position"][:, 0].mean() > s0["position"][:, 0].mean() + 0.2, "the slide moved down the slope")
 check(s1["contacts"].max() >= 1 and "angular_velocity" in s1, "contact counts and angular velocity written")
 check(surge_post.read_summary(os.path.join(out_dem, "summary.json"))["particles"]["sphere"] == 522, "summary counts spheres")
+# DEM wall gauges: the slide (weight W = 522 m g) rests on the slope. Its spheres bounce,
+# so the load is read as a time mean over 0.05-0.3 s, where the vertical force on the
+# slope is W minus the slide's vertical acceleration: between the value for a block
+# sliding with the wall's friction (10 deg: a = g (sin 27.1 - tan 10 cos 27.1), load
+# 0.863 W) and W (no acceleration); the floor carries nothing while the slide is on the
+# slope.
+names, gd = surge_post.read_gauges(os.path.join(out_dem, "gauges.csv"))
+W = 522 * 2500 * 4 / 3 * np.pi * 0.03**3 * 9.81
+late = gd[:, 0] > 0.05
+fz = gd[late, names.index("slope_fz")].mean()
+check(names[:4] == ["time", "slope_fx", "slope_fz", "floor_fz"] and len(gd) > 10, f"DEM gauges written ({names})")
+check(-1.0 * W < fz < -0.8 * W, f"slope carries the slide (mean F_z = {fz:.0f} N = {-fz / W:.3f} W)")
+check(np.all(gd[:, names.index("floor_fz")] == 0), "floor unloaded while the slide is on the slope")
 bad_dem = write("bad_dem.yaml", open(os.path.join(case_dir, "slide_dem_only.yaml")).read()
                 .replace("mesh: slide_slope.stl", "mesh: " + os.path.abspath(os.path.join(case_dir, "slide_slope.stl")))
                 .replace("csv: slide_spheres.csv, material: rock",

@@ -310,3 +310,34 @@ TEST(DemSolver, BondedBlockStaysBelowTheFrictionAngleAndSlidesAbove) {
   EXPECT_LT(bonded_block_slide(20), 1e-4);
   EXPECT_GT(bonded_block_slide(40), 0.01);
 }
+
+// Wall gauges: a column of three spheres at rest on a floor presses on it with its
+// weight, F_z = -3 m g, and the moment about the origin is r x F of that load, with r the
+// column's position: M = (x, y, 0) x (0, 0, -W) = (-y W, x W, 0) (relative 1e-3: the column settles
+// with local damping; float). The same on a floor made of two triangles of one mesh.
+TEST(DemSolver, WallGaugeReadsTheWeightOfARestingColumn) {
+  const Real r = 0.01f, g = 9.81f;
+  const Vec3 x0{0.3f, -0.2f, 0};
+  for (bool mesh : {false, true}) {
+    std::vector<Plane> planes;
+    if (!mesh) planes.push_back({{0, 0, 0}, {0, 0, 1}, 0});
+    DemSolver s({grains(0.5f)}, planes, Vec3{0, 0, -g}, lo, hi);
+    if (mesh)
+      s.set_wall_triangles({{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, 0, 0}, {{-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, 0, 0}});
+    std::vector<Sphere> sp;
+    for (int k = 0; k < 3; ++k) sp.push_back({x0 + Vec3{0, 0, r * static_cast<Real>(1 + 2 * k)}, {}, {}, r, 0});
+    s.set_spheres(sp);
+    s.set_local_damping(0.7f);
+    const Real dt = s.critical_dt(0.1f);
+    for (int k = 0; k < 4000; ++k) s.step(dt);
+    const double m = 2500.0 * 4.0 / 3.0 * pi * r * r * r, w = 3 * m * g;
+    const WallLoad l = mesh ? s.wall_load(-1, 0, Vec3{}) : s.wall_load(0, -1, Vec3{});
+    EXPECT_NEAR(l.force.z, -w, 1e-3 * w) << (mesh ? "mesh" : "plane");
+    EXPECT_NEAR(l.force.x, 0.0, 1e-3 * w);
+    EXPECT_NEAR(l.moment.y, x0.x * w, 1e-3 * w * 0.3);
+    EXPECT_NEAR(l.moment.x, -x0.y * w, 1e-3 * w * 0.3); // (y e_y) x (-w e_z) = -y w e_x
+    // Another wall (or mesh) reads nothing.
+    const WallLoad none = mesh ? s.wall_load(-1, 1, Vec3{}) : s.wall_load(1, -1, Vec3{});
+    EXPECT_EQ(none.force.z, 0.0f);
+  }
+}

@@ -62,7 +62,7 @@ struct WallSpec {
   int line = 0;
 };
 
-enum class GaugeType { Height, Pressure, Velocity, Force, Sphere };
+enum class GaugeType { Height, Pressure, Velocity, Force, Sphere, DemWall };
 
 struct GaugeSpec {
   std::string name;
@@ -72,6 +72,7 @@ struct GaugeSpec {
   std::string component = "z"; // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
   std::string wall;            // force gauges: name of the wall
   int sphere = 0;              // sphere gauges: index of the sphere (packs in order, spheres in pack order)
+  Vec3d about{};               // dem_wall gauges: moments about this point (absolute)
   int line = 0;
 };
 
@@ -98,6 +99,7 @@ struct DemPackSpec {
 };
 
 struct DemWallSpec {
+  std::string name; // optional, for dem_wall gauges
   bool is_mesh = false;
   Vec3d point{}, normal{0, 0, 1}; // plane
   std::string mesh_path;          // STL

@@ -152,6 +152,26 @@ SURGE_HD inline int wall_contacts(const WallTriangle* tris, int n_tris, const Ve
   return n;
 }
 
+// The pair input of sphere i against a wall (a plane or triangle of infinite mass acting
+// as a sphere of the same radius, never bonded).
+SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw, const Vec3& n,
+                                          Real un) {
+  PairInput in;
+  in.n = n;
+  in.un = un;
+  in.ra = v.radius[i];
+  in.rb = 0;
+  in.va = v.vel[i];
+  in.wa = v.omega[i];
+  in.vb = Vec3{};
+  in.wb = Vec3{};
+  in.mstar = v.mass[i];
+  Material unbondable = mw;
+  unbondable.bonded = false;
+  mix_materials(mi, unbondable, in.ra, in.ra, in);
+  return in;
+}
+
 void contacts(const DemView& v, const neighbour::GridView& g, const Material* mats, const Plane* planes, int n_planes,
               const WallTriangle* tris, int n_tris, Real reach, Real dt) {
   par::parallel_for(
@@ -212,19 +232,7 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         });
         // A wall contact: unit normal from the wall to the sphere, overlap, partner id, material.
         auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-          PairInput in;
-          in.n = n;
-          in.un = un;
-          in.ra = ri;
-          in.rb = 0;
-          in.va = v.vel[i];
-          in.wa = v.omega[i];
-          in.vb = Vec3{};
-          in.wb = Vec3{};
-          in.mstar = v.mass[i];
-          Material unbondable = mats[material];
-          unbondable.bonded = false;
-          mix_materials(mi, unbondable, ri, ri, in);
+          const PairInput in = wall_pair_input(v, i, mi, mats[material], n, un);
           const ContactSlot* s = find_slot(old_row, partner);
           const PairResult r = pair_terms(in, s ? *s : ContactSlot{}, dt);
           f += r.force_a;
@@ -250,6 +258,56 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         // Only the slots no contact filled need clearing (stored slots were written whole).
         for (int k = used; k < max_contacts; ++k) new_row[k] = ContactSlot{};
       });
+}
+
+// Force and moment (about `about`) that the spheres exert on one wall: plane `plane`
+// (>= 0) or the triangles of mesh `mesh` (>= 0). Each stored wall contact is evaluated
+// again for the current state with a zero time step, which gives the contact force as it
+// stands (normal spring and dashpot, stored shear, rolling and twisting moments).
+WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, const WallTriangle* tris, int plane,
+                   int mesh, Vec3 about) {
+  return par::parallel_reduce(
+      v.n, WallLoad{},
+      SURGE_LAMBDA(int i) {
+        WallLoad out;
+        const ContactSlot* row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
+        const Vec3 xi = v.pos[i];
+        const Real ri = v.radius[i];
+        const Material mi = mats[v.material[i]];
+        for (int k = 0; k < max_contacts; ++k) {
+          const std::uint32_t partner = row[k].partner;
+          if (partner == no_partner) continue;
+          Vec3 n{};
+          Real un = 0;
+          int material = 0;
+          if ((partner & plane_partner) != 0) {
+            const int pk = static_cast<int>(partner & ~plane_partner);
+            if (pk != plane) continue;
+            const Plane pl = planes[pk];
+            n = pl.normal;
+            un = ri - dot(xi - pl.point, pl.normal);
+            material = pl.material;
+          } else if ((partner & triangle_partner) != 0) {
+            const int tk = static_cast<int>(partner & ~triangle_partner);
+            const WallTriangle tr = tris[tk];
+            if (tr.mesh != mesh) continue;
+            const Vec3 cp = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, xi).point;
+            const Real d = norm(xi - cp);
+            if (!(d > 0)) continue;
+            n = (xi - cp) * (1 / d);
+            un = ri - d;
+            material = tr.material;
+          } else {
+            continue;
+          }
+          if (!(un > 0)) continue;
+          const PairResult r = pair_terms(wall_pair_input(v, i, mi, mats[material], n, un), row[k], 0);
+          out.force -= r.force_a;
+          out.moment -= cross(xi - about, r.force_a) + r.torque_a;
+        }
+        return out;
+      },
+      SumWallLoads{});
 }
 
 // Bonds each sphere to every neighbour of a bonded material closer than `gap`.
@@ -562,6 +620,11 @@ long DemSolver::bond_touching(Real gap) {
   long bonds = 0;
   for (const auto& s : h) bonds += s.bonded ? 1 : 0;
   return bonds / 2;
+}
+
+WallLoad DemSolver::wall_load(int plane, int mesh, Vec3 about) {
+  const DemView v = view();
+  return detail::wall_load(v, materials_.data(), planes_.data(), triangles_.data(), plane, mesh, about);
 }
 
 long DemSolver::broken_bonds() const {

@@ -67,6 +67,14 @@ struct ContactSlot {
   std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
 };
 
+// Force and moment the spheres exert on a wall (a gauge).
+struct WallLoad {
+  Vec3 force{}, moment{};
+};
+struct SumWallLoads {
+  SURGE_HD WallLoad operator()(const WallLoad& a, const WallLoad& b) const { return {a.force + b.force, a.moment + b.moment}; }
+};
+
 struct DemView {
   int n = 0;
   Vec3 *pos, *vel, *omega, *force, *torque;
@@ -92,6 +100,9 @@ public:
   long bond_touching(Real gap);
   // Cundall local damping coefficient a_d (0: off, the default for dynamic runs).
   void set_local_damping(Real ad) { local_damping_ = ad; }
+  // Force and moment (about `about`) of the spheres on plane `plane` (index among the
+  // planes, or -1) or on the triangles of mesh `mesh` (or -1), from the current contacts.
+  [[nodiscard]] WallLoad wall_load(int plane, int mesh, Vec3 about);
   // Bonds broken since the start.
   [[nodiscard]] long broken_bonds() const;
   // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).

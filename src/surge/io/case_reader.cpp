@@ -255,8 +255,9 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     for (std::size_t i = 0; i < walls.size(); ++i) {
       const std::string path = "dem.walls." + std::to_string(i);
       const YAML::Node w = walls[i];
-      r.check_keys(w, path, {"plane", "mesh", "material"});
+      r.check_keys(w, path, {"name", "plane", "mesh", "material"});
       DemWallSpec ws;
+      ws.name = r.get<std::string>(w, path, "name", "");
       ws.line = w.Mark().line + 1;
       ws.material = material(w, path);
       if (w["plane"].IsDefined() == w["mesh"].IsDefined())
@@ -463,7 +464,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < gauges.size(); ++i) {
       const std::string path = "gauges." + std::to_string(i);
       const YAML::Node g = gauges[i];
-      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere"});
+      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere", "about"});
       GaugeSpec gs;
       gs.line = g.Mark().line + 1;
       gs.name = r.require<std::string>(g, path, "name");
@@ -495,11 +496,21 @@ Case parse(const YAML::Node& root, Reader& r) {
           r.fail(g["component"], path + ".component",
                  "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
                  "mz (fluid moment about the centre)");
+      } else if (type == "dem_wall") {
+        gs.type = GaugeType::DemWall;
+        gs.wall = r.require<std::string>(g, path, "wall");
+        gs.about = r.get(g, path, "about", gs.about);
+        gs.component = r.get<std::string>(g, path, "component", "fz");
+        const std::set<std::string> ok{"fx", "fy", "fz", "mx", "my", "mz"};
+        if (ok.count(gs.component) == 0)
+          r.fail(g["component"], path + ".component",
+                 "a dem_wall gauge reads fx, fy, fz (force of the spheres on the wall) or mx, my, mz (moment about "
+                 "'about')");
       } else {
         r.fail(g["type"], path + ".type",
-               "unknown gauge type '" + type + "'; use height, pressure, velocity, force or sphere");
+               "unknown gauge type '" + type + "'; use height, pressure, velocity, force, sphere or dem_wall");
       }
-      if (gs.type == GaugeType::Sphere) {
+      if (gs.type == GaugeType::Sphere || gs.type == GaugeType::DemWall) {
         // component checked above
       } else if (gs.type == GaugeType::Velocity || gs.type == GaugeType::Force) {
         gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
@@ -530,11 +541,18 @@ Case parse(const YAML::Node& root, Reader& r) {
     }
   }
   if (const auto d = root["dem"]; d.IsDefined()) parse_dem(r, d, c);
+  for (std::size_t i = 0; i < c.gauges.size(); ++i) {
+    const GaugeSpec& g = c.gauges[i];
+    if (g.type != GaugeType::DemWall) continue;
+    if (std::none_of(c.dem.walls.begin(), c.dem.walls.end(), [&](const DemWallSpec& w) { return w.name == g.wall; }))
+      r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall",
+             "no DEM wall named '" + g.wall + "' (give the wall a name: under dem.walls)");
+  }
   if (c.dem.active() && c.fluid.empty())
     for (std::size_t i = 0; i < c.gauges.size(); ++i)
-      if (c.gauges[i].type != GaugeType::Sphere)
+      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
-               "this gauge measures the water and a DEM-only case has none; use sphere gauges");
+               "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
   if (const auto cp = root["coupling"]; cp.IsDefined()) {
     r.check_keys(cp, "coupling", {"body_layers"});
     c.coupling.body_layers = r.get(cp, "coupling", "body_layers", 0);
@@ -656,6 +674,11 @@ std::string to_yaml(const Case& c) {
       e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
         << "component" << YAML::Value << g.component;
       break;
+    case GaugeType::DemWall:
+      e << YAML::Key << "type" << YAML::Value << "dem_wall" << YAML::Key << "wall" << YAML::Value << g.wall
+        << YAML::Key << "component" << YAML::Value << g.component << YAML::Key << "about" << YAML::Value;
+      vec(g.about);
+      break;
     case GaugeType::Sphere:
       e << YAML::Key << "type" << YAML::Value << "sphere" << YAML::Key << "sphere" << YAML::Value << g.sphere
         << YAML::Key << "component" << YAML::Value << g.component;
@@ -685,6 +708,7 @@ std::string to_yaml(const Case& c) {
     e << YAML::EndSeq << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
     for (const auto& w : d.walls) {
       e << YAML::BeginMap;
+      if (!w.name.empty()) e << YAML::Key << "name" << YAML::Value << w.name;
       if (w.is_mesh) {
         e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
       } else {

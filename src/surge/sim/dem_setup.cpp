@@ -33,9 +33,11 @@ DemSetup dem_setup(const Case& c) {
   int mesh_index = 0;
   for (const auto& w : c.dem.walls) {
     if (!w.is_mesh) {
+      s.wall_index.emplace_back(static_cast<int>(s.planes.size()), -1);
       s.planes.push_back({local(w.point), Vec3(w.normal * (1.0 / norm(w.normal))), w.material});
       continue;
     }
+    s.wall_index.emplace_back(-1, mesh_index);
     for (const auto& t : geometry::read_stl(w.mesh_path).tris)
       s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material});
     ++mesh_index;
@@ -80,6 +82,17 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
   f.bonds = solver.intact_bonds();
   for (std::size_t k = 0; k < sp.size(); ++k) f.id.push_back(static_cast<std::uint32_t>(k));
   return f;
+}
+
+double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver) {
+  for (std::size_t w = 0; w < c.dem.walls.size(); ++w) {
+    if (c.dem.walls[w].name != g.wall) continue;
+    const auto [plane, mesh] = s.wall_index[w];
+    const dem::WallLoad l = solver.wall_load(plane, mesh, Vec3(g.about - s.origin));
+    const int a = g.component[1] == 'x' ? 0 : g.component[1] == 'y' ? 1 : 2;
+    return static_cast<double>(g.component[0] == 'f' ? l.force[a] : l.moment[a]);
+  }
+  return 0.0;
 }
 
 void check_sphere_gauges(const Case& c, std::size_t n_spheres) {

@@ -18,6 +18,8 @@ struct DemSetup {
   std::vector<dem::Sphere> spheres; // local coordinates (absolute - origin)
   bool bonded = false;
   Vec3d origin{};
+  // Per case DEM wall: {plane index, -1} or {-1, mesh index}.
+  std::vector<std::pair<int, int>> wall_index;
 };
 
 // Everything that can fail on input (meshes, sphere lists) fails here.
@@ -25,6 +27,8 @@ DemSetup dem_setup(const Case& c);
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s);
 // The spheres' current state, by id, for write_spheres_vtp.
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
+// Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.
+double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver);
 // Checks that every sphere gauge names an existing sphere.
 void check_sphere_gauges(const Case& c, std::size_t n_spheres);
 // Value of a sphere gauge: centre (absolute), velocity, fluid force or fluid moment

@@ -81,7 +81,9 @@ int run_dem(const Case& c, const RunOptions& opt) {
   auto sample_gauges = [&] {
     const auto sp = solver.spheres();
     std::vector<double> row{t};
-    for (const auto& g : c.gauges) row.push_back(sphere_gauge_value(g, sp, {}, {}, setup.origin));
+    for (const auto& g : c.gauges)
+      row.push_back(g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, setup, solver)
+                                                 : sphere_gauge_value(g, sp, {}, {}, setup.origin));
     rows.push_back(std::move(row));
   };
   auto write_output = [&] {

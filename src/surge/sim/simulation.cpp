@@ -227,7 +227,10 @@ int run(const Case& c, const RunOptions& opt) {
       ff = cp->coupling->fluid_forces();
       fm = cp->coupling->fluid_moments();
     }
-    auto v = gauges.sample(solver, [&](const GaugeSpec& g) { return sphere_gauge_value(g, sp, ff, fm, init.origin); });
+    auto v = gauges.sample(solver, [&](const GaugeSpec& g) {
+      return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
+                                          : sphere_gauge_value(g, sp, ff, fm, init.origin);
+    });
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };

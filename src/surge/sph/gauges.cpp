@@ -78,7 +78,7 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
           v = spec.component == "x" ? vel.x : spec.component == "y" ? vel.y : spec.component == "z" ? vel.z : norm(vel);
         }
       }
-    } else if (spec.type == GaugeType::Sphere) {
+    } else if (spec.type == GaugeType::Sphere || spec.type == GaugeType::DemWall) {
       v = sphere_value ? sphere_value(spec) : 0.0;
     } else {
       const std::uint32_t id0 = pr.id0, id1 = pr.id1;

@@ -35,8 +35,8 @@ class Gauges {
 public:
   Gauges(const Case& c, const InitialState& init);
   [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
-  // One value per gauge for the solver's current state; sphere gauges (GaugeType::Sphere)
-  // read the DEM through `sphere_value`, which the coupled run loop supplies.
+  // One value per gauge for the solver's current state; sphere and dem_wall gauges read
+  // the DEM through `sphere_value`, which the coupled run loop supplies.
   std::vector<double> sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value = {});
 
 private:
