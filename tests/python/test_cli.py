@@ -175,6 +175,34 @@ bad_dem = write("bad_dem.yaml", open(os.path.join(case_dir, "slide_dem_only.yaml
 r = run(["check", bad_dem])
 check(r.returncode == 2 and "no DEM material named 'granite'" in r.stderr, f"unknown DEM material is rejected ({r.stderr.strip()[:120]})")
 
+# --- a random loose pack settled under gravity before the run: 200 spheres dropped into a
+# box; after 0.6 s of settling they rest on the floor: every sphere inside the walls (up
+# to 2 % of r of overlap), the pack lower than where it started, nearly at rest.
+SETTLE = """name: settled
+time: {end: 0.01, output_every: 0.01}
+domain: {min: [0, 0, 0], max: [0.1, 0.1, 0.3]}
+dem:
+  materials: [{name: sand, restitution: 0.3}]
+  walls:
+    - {plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: sand}
+    - {plane: {point: [0, 0, 0], normal: [1, 0, 0]}, material: sand}
+    - {plane: {point: [0.1, 0, 0], normal: [-1, 0, 0]}, material: sand}
+    - {plane: {point: [0, 0, 0], normal: [0, 1, 0]}, material: sand}
+    - {plane: {point: [0, 0.1, 0], normal: [0, -1, 0]}, material: sand}
+  packs: [{box: {min: [0, 0, 0.1], max: [0.1, 0.1, 0.3]}, radius: 0.006, random: 200, settle: 0.6, material: sand}]
+"""
+out_s = os.path.join(WORK, "out_settled")
+r = run(["run", write("settled.yaml", SETTLE), "--out", out_s, "--quiet"])
+check(r.returncode == 0, f"random pack settles and runs ({r.stderr[-200:]})")
+if r.returncode == 0:
+    s0 = surge_post.read_vtp(surge_post.read_pvd(os.path.join(out_s, "spheres.pvd"))[0][1])
+    p = s0["position"]
+    check(len(p) == 200, "200 spheres")
+    check(p[:, 2].min() > 0.006 * 0.98 and p[:, :2].min() > 0.006 * 0.98 and p[:, :2].max() < 0.1 - 0.006 * 0.98,
+          "settled spheres inside the walls")
+    check(p[:, 2].max() < 0.1, f"the pack fell to the floor (top centre at {p[:, 2].max():.3f} m)")
+    check(np.linalg.norm(s0["velocity"], axis=1).max() == 0, "the run starts from rest")
+
 # --- a bonded DEM block: bonds written as VTK lines, counted in the summary
 BONDED = """name: bonded
 time: {end: 0.02, output_every: 0.01}

@@ -88,9 +88,12 @@ struct DemMaterialSpec {
 
 struct DemPackSpec {
   bool from_csv = false;
-  Box box; // lattice pack: spheres touching on a cubic lattice inside the box
+  Box box;               // region: a box, or the bounding box of `mesh`
+  std::string mesh_path; // region: inside this closed STL mesh (resolved path); empty: the box
+  long random_count = 0; // > 0: a random loose pack of this many spheres instead of the lattice
+  double settle = 0;     // > 0: settle the pack under gravity (local damping 0.7) for this long [s]
   double radius = 0;
-  double jitter = 0; // random offset of each sphere, as a fraction of its radius
+  double jitter = 0; // lattice: random offset of each sphere, as a fraction of its radius
   std::string csv;   // x, y, z, r per line (resolved path)
   int material = 0;  // index into DemConfig::materials
   Vec3d velocity{};

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <unordered_map>
 #include <sstream>
 
 namespace surge::geometry {
@@ -23,6 +24,81 @@ std::vector<SphereSpec> lattice_pack(const Box& box, double radius, double jitte
                       box.min.z + (static_cast<double>(k) + 0.5) * d};
         out.push_back({c + Vec3d{u(rng), u(rng), u(rng)}, radius});
       }
+  return out;
+}
+
+bool inside_mesh(const Mesh& m, const Vec3d& p) {
+  // Moller-Trumbore ray-triangle tests along an oblique direction (no axis-aligned edge is
+  // hit edge-on by accident); odd crossings: inside.
+  const Vec3d dir{0.5773502691896258, 0.5773502691896258 * 1.0001, 0.5773502691896258 * 0.9998};
+  int crossings = 0;
+  for (const auto& t : m.tris) {
+    const Vec3d e1 = t.b - t.a, e2 = t.c - t.a;
+    const Vec3d pv = cross(dir, e2);
+    const double det = dot(e1, pv);
+    if (std::fabs(det) < 1e-18) continue;
+    const double inv = 1.0 / det;
+    const Vec3d tv = p - t.a;
+    const double u = dot(tv, pv) * inv;
+    if (u < 0 || u > 1) continue;
+    const Vec3d qv = cross(tv, e1);
+    const double v = dot(dir, qv) * inv;
+    if (v < 0 || u + v > 1) continue;
+    if (dot(e2, qv) * inv > 0) ++crossings;
+  }
+  return crossings % 2 == 1;
+}
+
+double distance_to_mesh(const Mesh& m, const Vec3d& p) {
+  double best = 1e300;
+  for (const auto& t : m.tris) best = std::min(best, norm(p - closest_point(t, p)));
+  return best;
+}
+
+bool PackRegion::holds(const Vec3d& c, double r) const {
+  for (int k = 0; k < 3; ++k)
+    if (c[k] - r < box.min[k] - 1e-12 || c[k] + r > box.max[k] + 1e-12) return false;
+  return mesh == nullptr || (inside_mesh(*mesh, c) && distance_to_mesh(*mesh, c) >= r);
+}
+
+std::vector<SphereSpec> lattice_pack(const PackRegion& region, double radius, double jitter, unsigned seed) {
+  std::vector<SphereSpec> out;
+  for (const auto& s : lattice_pack(region.box, radius, jitter, seed))
+    if (region.mesh == nullptr || region.holds(s.centre, radius)) out.push_back(s);
+  return out;
+}
+
+std::vector<SphereSpec> random_pack(const PackRegion& region, double radius, long count, unsigned seed) {
+  std::vector<SphereSpec> out;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  // Spheres by cell of size 2r: a new sphere checks the 27 cells around it.
+  const double cell = 2 * radius;
+  std::unordered_map<long long, std::vector<int>> grid;
+  auto key = [&](long long i, long long j, long long k) { return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL); };
+  auto idx = [&](double v) { return static_cast<long long>(std::floor(v / cell)); };
+  const long attempts = 200 * count + 10000;
+  for (long a = 0; a < attempts && static_cast<long>(out.size()) < count; ++a) {
+    Vec3d c;
+    for (int k = 0; k < 3; ++k)
+      c[k] = region.box.min[k] + radius + u(rng) * (region.box.max[k] - region.box.min[k] - 2 * radius);
+    bool free = true;
+    const long long i0 = idx(c.x), j0 = idx(c.y), k0 = idx(c.z);
+    for (long long i = i0 - 1; i <= i0 + 1 && free; ++i)
+      for (long long j = j0 - 1; j <= j0 + 1 && free; ++j)
+        for (long long k = k0 - 1; k <= k0 + 1 && free; ++k) {
+          const auto it = grid.find(key(i, j, k));
+          if (it == grid.end()) continue;
+          for (int s : it->second)
+            if (norm(out[static_cast<std::size_t>(s)].centre - c) < 2 * radius) {
+              free = false;
+              break;
+            }
+        }
+    if (!free || !region.holds(c, radius)) continue;
+    grid[key(i0, j0, k0)].push_back(static_cast<int>(out.size()));
+    out.push_back({c, radius});
+  }
   return out;
 }
 

@@ -279,26 +279,39 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     for (std::size_t i = 0; i < packs.size(); ++i) {
       const std::string path = "dem.packs." + std::to_string(i);
       const YAML::Node pk = packs[i];
-      r.check_keys(pk, path, {"box", "radius", "jitter", "csv", "material", "velocity", "fixed"});
+      r.check_keys(pk, path,
+                   {"box", "mesh", "radius", "jitter", "random", "settle", "csv", "material", "velocity", "fixed"});
       DemPackSpec ps;
       ps.line = pk.Mark().line + 1;
       ps.material = material(pk, path);
       ps.velocity = r.get(pk, path, "velocity", ps.velocity);
       ps.fixed = r.get(pk, path, "fixed", false);
-      if (pk["box"].IsDefined() == pk["csv"].IsDefined())
-        r.fail(pk, path, "a pack needs exactly one of 'box' or 'csv'");
-      if (pk["box"].IsDefined()) {
-        ps.box = parse_box(r, pk["box"], path + ".box");
+      const int regions = (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) +
+                          (pk["csv"].IsDefined() ? 1 : 0);
+      if (regions != 1) r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL) or 'csv'");
+      ps.settle = r.get(pk, path, "settle", 0.0);
+      if (ps.settle < 0) r.fail(pk["settle"], path + ".settle", "must not be negative (seconds of settling)");
+      if (pk["box"].IsDefined() || pk["mesh"].IsDefined()) {
+        if (pk["box"].IsDefined()) {
+          ps.box = parse_box(r, pk["box"], path + ".box");
+          if (!c.domain.contains(ps.box.min, 1e-9) || !c.domain.contains(ps.box.max, 1e-9))
+            r.fail(pk["box"], path + ".box", "the pack lies (partly) outside the domain");
+        } else {
+          ps.mesh_path = resolve(pk["mesh"], path + ".mesh", r.as<std::string>(pk["mesh"], path + ".mesh"));
+        }
         ps.radius = r.require<double>(pk, path, "radius");
         if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
         ps.jitter = r.get(pk, path, "jitter", 0.0);
         if (!(ps.jitter >= 0 && ps.jitter < 0.5)) r.fail(pk["jitter"], path + ".jitter", "must lie in [0, 0.5)");
-        for (int k = 0; k < 3; ++k)
-          if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)
-            r.fail(pk["box"], path + ".box", "the box is thinner than one sphere diameter");
-        if (!c.domain.contains(ps.box.min, 1e-9) || !c.domain.contains(ps.box.max, 1e-9))
-          r.fail(pk["box"], path + ".box", "the pack lies (partly) outside the domain");
+        ps.random_count = r.get(pk, path, "random", 0L);
+        if (ps.random_count < 0) r.fail(pk["random"], path + ".random", "must be a positive number of spheres");
+        if (pk["box"].IsDefined())
+          for (int k = 0; k < 3; ++k)
+            if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)
+              r.fail(pk["box"], path + ".box", "the box is thinner than one sphere diameter");
       } else {
+        if (pk["random"].IsDefined() || pk["jitter"].IsDefined())
+          r.fail(pk, path, "'random' and 'jitter' apply to box and mesh packs, not to a CSV list");
         ps.from_csv = true;
         ps.csv = resolve(pk["csv"], path + ".csv", r.as<std::string>(pk["csv"], path + ".csv"));
       }
@@ -727,10 +740,16 @@ std::string to_yaml(const Case& c) {
       if (pk.from_csv) {
         e << YAML::Key << "csv" << YAML::Value << pk.csv;
       } else {
-        e << YAML::Key << "box" << YAML::Value;
-        box(pk.box);
+        if (pk.mesh_path.empty()) {
+          e << YAML::Key << "box" << YAML::Value;
+          box(pk.box);
+        } else {
+          e << YAML::Key << "mesh" << YAML::Value << pk.mesh_path;
+        }
         e << YAML::Key << "radius" << YAML::Value << pk.radius << YAML::Key << "jitter" << YAML::Value << pk.jitter;
+        if (pk.random_count > 0) e << YAML::Key << "random" << YAML::Value << pk.random_count;
       }
+      if (pk.settle > 0) e << YAML::Key << "settle" << YAML::Value << pk.settle;
       e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(pk.material)].name;
       e << YAML::Key << "velocity" << YAML::Value;
       vec(pk.velocity);

@@ -4,10 +4,40 @@
 #include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/stl_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 namespace surge::sim {
+
+namespace {
+// Lets a pack fall and come to rest under gravity against the case's DEM walls (its own
+// spheres only, Cundall local damping 0.7) for pk.settle seconds (SPEC §3: local damping
+// "useful to settle a pack"). Returns the settled centres (absolute).
+std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, const DemPackSpec& pk,
+                                              const std::vector<geometry::SphereSpec>& list) {
+  if (list.empty()) return list;
+  const Vec3 hi(c.domain.max - c.domain.min);
+  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
+  solver.set_wall_triangles(s.triangles);
+  solver.set_local_damping(Real(0.7));
+  std::vector<dem::Sphere> spheres;
+  for (const auto& sp : list)
+    spheres.push_back({Vec3(sp.centre - s.origin), Vec3{}, Vec3{}, static_cast<Real>(sp.radius), pk.material, false});
+  solver.set_spheres(spheres);
+  const Real dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
+  const long steps = static_cast<long>(std::ceil(pk.settle / static_cast<double>(dt)));
+  for (long k = 0; k < steps; ++k) solver.step(dt);
+  std::vector<geometry::SphereSpec> out;
+  for (const auto& sp : solver.spheres()) {
+    const Vec3d x = Vec3d(sp.pos) + s.origin;
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+      throw InputError(c.source, pk.line, "dem.packs.settle", "settling the pack diverged; check its walls and dt_factor");
+    out.push_back({x, static_cast<double>(sp.radius)});
+  }
+  return out;
+}
+} // namespace
 
 DemSetup dem_setup(const Case& c) {
   DemSetup s;
@@ -43,8 +73,36 @@ DemSetup dem_setup(const Case& c) {
     ++mesh_index;
   }
   for (const auto& pk : c.dem.packs) {
-    const auto list =
-        pk.from_csv ? geometry::read_sphere_csv(pk.csv) : geometry::lattice_pack(pk.box, pk.radius, pk.jitter);
+    std::vector<geometry::SphereSpec> list;
+    if (pk.from_csv) {
+      list = geometry::read_sphere_csv(pk.csv);
+    } else {
+      geometry::PackRegion region{pk.box, nullptr};
+      geometry::Mesh mesh;
+      if (!pk.mesh_path.empty()) {
+        mesh = geometry::read_stl(pk.mesh_path);
+        if (mesh.tris.empty()) throw InputError(pk.mesh_path, 0, "", "the mesh has no triangles");
+        region.box = {mesh.tris[0].a, mesh.tris[0].a};
+        for (const auto& t : mesh.tris)
+          for (const Vec3d& v : {t.a, t.b, t.c})
+            for (int k = 0; k < 3; ++k) {
+              region.box.min[k] = std::min(region.box.min[k], v[k]);
+              region.box.max[k] = std::max(region.box.max[k], v[k]);
+            }
+        region.mesh = &mesh;
+      }
+      if (pk.random_count > 0) {
+        list = geometry::random_pack(region, pk.radius, pk.random_count);
+        if (static_cast<long>(list.size()) < pk.random_count)
+          throw InputError(c.source, pk.line, "dem.packs",
+                           "only " + std::to_string(list.size()) + " of " + std::to_string(pk.random_count) +
+                               " spheres of radius " + std::to_string(pk.radius) +
+                               " fit in the pack's region at random; lower 'random' or enlarge the region");
+      } else {
+        list = geometry::lattice_pack(region, pk.radius, pk.jitter);
+      }
+    }
+    if (pk.settle > 0) list = settle_pack(c, s, pk, list);
     for (const auto& sp : list) {
       if (!c.domain.contains(sp.centre))
         throw InputError(c.source, pk.line, "dem.packs",
