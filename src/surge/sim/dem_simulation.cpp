@@ -6,6 +6,7 @@
 #include "surge/geometry/stl_mesh.hpp"
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
+#include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/run_support.hpp"
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 namespace surge::sim {
 namespace {
@@ -41,7 +43,6 @@ int check_dem(const Case& c) {
 }
 
 int run_dem(const Case& c, const RunOptions& opt) {
-  if (opt.restart) throw InputError(c.source, 0, "", "restart is not available for DEM runs yet");
   const auto wall0 = Clock::now();
   const DemSetup setup = dem_setup(c);
   check_sphere_gauges(c, setup.spheres.size());
@@ -51,6 +52,20 @@ int run_dem(const Case& c, const RunOptions& opt) {
 
   namespace fs = std::filesystem;
   const fs::path out(opt.out_dir);
+  io::Checkpoint ck;
+  if (opt.restart) {
+    const std::string path = (out / "checkpoint.bin").string();
+    ck = io::read_checkpoint(path);
+    if (ck.dem_state.empty() || !ck.particles.pos.empty())
+      throw InputError(path, 0, "", "not the checkpoint of a DEM-only run; restart with the case.yaml of that run");
+    if (!ck.gauge_rows.empty() && ck.gauge_rows.front().size() != c.gauges.size() + 1)
+      throw InputError(path, 0, "gauges", "the checkpoint's gauges differ from the case's");
+    try {
+      solver.restore(ck.dem_state);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path, 0, "dem", std::string(e.what()) + "; restart with the case.yaml of that run");
+    }
+  }
   fs::create_directories(out / "particles");
   io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
   io::PvdCollection pvd((out / "spheres.pvd").string());
@@ -86,21 +101,51 @@ int run_dem(const Case& c, const RunOptions& opt) {
                                                  : sphere_gauge_value(g, sp, {}, {}, setup.origin));
     rows.push_back(std::move(row));
   };
+  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
+  std::vector<double> frame_times;
   auto write_output = [&] {
     const io::SphereFrame f = sphere_frame(solver);
+    for (const auto& p : f.pos)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false; // keep the last good files
     if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
     char name[64];
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
     io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
     pvd.add(t, std::string("particles/") + name);
-    for (const auto& p : f.pos)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+    frame_times.push_back(t);
+    io::Checkpoint k;
+    k.time = t;
+    k.steps = steps;
+    k.frame = frame;
+    k.next_output = next_out;
+    k.next_gauge = next_gauge;
+    k.frame_times = frame_times;
+    k.gauge_rows = rows;
+    k.dem_state = solver.save();
+    io::write_checkpoint((out / "checkpoint.bin").string(), k);
     return true;
   };
-  if (!gauge_names.empty()) sample_gauges();
-  write_output();
+  if (opt.restart) {
+    t = ck.time;
+    steps = ck.steps;
+    frame = ck.frame;
+    next_out = ck.next_output;
+    next_gauge = ck.next_gauge;
+    frame_times = ck.frame_times;
+    rows = ck.gauge_rows;
+    std::vector<std::pair<double, std::string>> entries;
+    for (std::size_t k = 0; k < frame_times.size(); ++k) {
+      char name[64];
+      std::snprintf(name, sizeof name, "particles/spheres_%04zu.vtp", k);
+      entries.emplace_back(frame_times[k], name);
+    }
+    pvd.restore(entries);
+    if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, steps);
+  } else {
+    if (!gauge_names.empty()) sample_gauges();
+    write_output();
+  }
   write_summary();
-  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   const double eps = 1e-9 * c.time.end;
   auto last_report = Clock::now();
   while (t < c.time.end - eps) {
@@ -134,7 +179,7 @@ int run_dem(const Case& c, const RunOptions& opt) {
     }
   }
   const bool interrupted = opt.stop && *opt.stop;
-  if (t > next_out - c.time.output_every + eps) write_output(); // the final state, unless just written
+  if (frame_times.empty() || t > frame_times.back()) write_output(); // the final state, unless just written
   status = interrupted ? "interrupted" : "completed";
   code = interrupted ? 130 : 0;
   write_summary();
