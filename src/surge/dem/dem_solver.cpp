@@ -154,8 +154,8 @@ SURGE_HD inline int wall_contacts(const WallTriangle* tris, int n_tris, const Ve
 
 // The pair input of sphere i against a wall (a plane or triangle of infinite mass acting
 // as a sphere of the same radius, never bonded).
-SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw, const Vec3& n,
-                                          Real un) {
+SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw,
+                                          const Vec3& n, Real un) {
   PairInput in;
   in.n = n;
   in.un = un;

@@ -72,7 +72,9 @@ struct WallLoad {
   Vec3 force{}, moment{};
 };
 struct SumWallLoads {
-  SURGE_HD WallLoad operator()(const WallLoad& a, const WallLoad& b) const { return {a.force + b.force, a.moment + b.moment}; }
+  SURGE_HD WallLoad operator()(const WallLoad& a, const WallLoad& b) const {
+    return {a.force + b.force, a.moment + b.moment};
+  }
 };
 
 struct DemView {

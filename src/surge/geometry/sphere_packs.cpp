@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fstream>
 #include <random>
-#include <unordered_map>
 #include <sstream>
+#include <unordered_map>
 
 namespace surge::geometry {
 
@@ -75,7 +75,9 @@ std::vector<SphereSpec> random_pack(const PackRegion& region, double radius, lon
   // Spheres by cell of size 2r: a new sphere checks the 27 cells around it.
   const double cell = 2 * radius;
   std::unordered_map<long long, std::vector<int>> grid;
-  auto key = [&](long long i, long long j, long long k) { return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL); };
+  auto key = [&](long long i, long long j, long long k) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
+  };
   auto idx = [&](double v) { return static_cast<long long>(std::floor(v / cell)); };
   const long attempts = 200 * count + 10000;
   for (long a = 0; a < attempts && static_cast<long>(out.size()) < count; ++a) {

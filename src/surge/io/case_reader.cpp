@@ -286,8 +286,8 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
       ps.material = material(pk, path);
       ps.velocity = r.get(pk, path, "velocity", ps.velocity);
       ps.fixed = r.get(pk, path, "fixed", false);
-      const int regions = (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) +
-                          (pk["csv"].IsDefined() ? 1 : 0);
+      const int regions =
+          (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) + (pk["csv"].IsDefined() ? 1 : 0);
       if (regions != 1) r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL) or 'csv'");
       ps.settle = r.get(pk, path, "settle", 0.0);
       if (ps.settle < 0) r.fail(pk["settle"], path + ".settle", "must not be negative (seconds of settling)");
@@ -688,8 +688,8 @@ std::string to_yaml(const Case& c) {
         << "component" << YAML::Value << g.component;
       break;
     case GaugeType::DemWall:
-      e << YAML::Key << "type" << YAML::Value << "dem_wall" << YAML::Key << "wall" << YAML::Value << g.wall
-        << YAML::Key << "component" << YAML::Value << g.component << YAML::Key << "about" << YAML::Value;
+      e << YAML::Key << "type" << YAML::Value << "dem_wall" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
+        << "component" << YAML::Value << g.component << YAML::Key << "about" << YAML::Value;
       vec(g.about);
       break;
     case GaugeType::Sphere:

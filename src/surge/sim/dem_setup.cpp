@@ -32,7 +32,8 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   for (const auto& sp : solver.spheres()) {
     const Vec3d x = Vec3d(sp.pos) + s.origin;
     if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
-      throw InputError(c.source, pk.line, "dem.packs.settle", "settling the pack diverged; check its walls and dt_factor");
+      throw InputError(c.source, pk.line, "dem.packs.settle",
+                       "settling the pack diverged; check its walls and dt_factor");
     out.push_back({x, static_cast<double>(sp.radius)});
   }
   return out;
