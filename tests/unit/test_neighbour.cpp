@@ -25,13 +25,13 @@ Pairs brute_force(const std::vector<Vec3>& pos, Real r) {
   return out;
 }
 
-Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Vec3& hi) {
+Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Vec3& hi, int span) {
   particles::HostParticles h;
   for (std::size_t i = 0; i < pos.size(); ++i) h.push(pos[i], Vec3{}, 1000, Kind::Fluid, static_cast<std::uint32_t>(i));
   particles::ParticleStore store;
   store.upload(h);
   neighbour::UniformGrid grid;
-  grid.set_spec(neighbour::make_grid(lo, hi, r));
+  grid.set_spec(neighbour::make_grid(lo, hi, r, span));
   EXPECT_EQ(store.sort(grid), 0);
   auto v = store.view();
   const auto g = grid.view(v.pos);
@@ -44,15 +44,20 @@ Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Ve
   return out;
 }
 
+// Both stencils: 27 cells of the radius (span 1, DEM) and 125 cells of half the radius
+// (span 2, SPH).
 void expect_same(const std::vector<Vec3>& pos, Real r, Vec3 lo, Vec3 hi) {
-  const Pairs a = brute_force(pos, r), b = grid_search(pos, r, lo, hi);
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t pairs = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i], b[i]) << "particle " << i;
-    pairs += a[i].size();
+  const Pairs a = brute_force(pos, r);
+  for (int span : {1, 2}) {
+    const Pairs b = grid_search(pos, r, lo, hi, span);
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t pairs = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i], b[i]) << "particle " << i << ", span " << span;
+      pairs += a[i].size();
+    }
+    if (!pos.empty()) { EXPECT_GT(pairs, pos.size()); } // the sets are not trivially self-only
   }
-  if (!pos.empty()) { EXPECT_GT(pairs, pos.size()); } // the sets are not trivially self-only
 }
 
 } // namespace
@@ -89,7 +94,7 @@ TEST(Neighbour, BoundaryTouchingAndOutsideClampedCells) {
 
 TEST(Neighbour, DegenerateSets) {
   expect_same({}, 0.1f, {0, 0, 0}, {1, 1, 1}); // empty domain
-  const Pairs one = grid_search({{0.5f, 0.5f, 0.5f}}, 0.1f, {0, 0, 0}, {1, 1, 1});
+  const Pairs one = grid_search({{0.5f, 0.5f, 0.5f}}, 0.1f, {0, 0, 0}, {1, 1, 1}, 1);
   ASSERT_EQ(one.size(), 1U);
   EXPECT_EQ(one[0], std::vector<std::uint32_t>{0}); // only itself
   std::vector<Vec3> same_cell;                      // all in one cell
@@ -103,9 +108,9 @@ TEST(Neighbour, SameResultOnOneAndTwoThreads) {
   std::vector<Vec3> pos;
   for (int i = 0; i < 5000; ++i) pos.push_back({u(rng), u(rng), u(rng)});
   par::set_threads(1);
-  const Pairs a = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1});
+  const Pairs a = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1}, 2);
   par::set_threads(2);
-  const Pairs b = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1});
+  const Pairs b = grid_search(pos, 0.06f, {0, 0, 0}, {1, 1, 1}, 2);
   EXPECT_EQ(a, b);
 }
 

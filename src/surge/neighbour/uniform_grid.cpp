@@ -7,11 +7,16 @@
 
 namespace surge::neighbour {
 
-GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius) {
+GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius, int span) {
   if (!(radius > 0)) throw std::invalid_argument("grid cell size must be positive");
+  if (span < 1) throw std::invalid_argument("grid stencil span must be at least 1");
   GridSpec s;
   s.lo = lo;
-  s.cell = radius;
+  s.span = span;
+  // Slightly above radius / span, so that float rounding of the division never makes the
+  // stencil miss a neighbour at exactly the radius.
+  s.cell = span == 1 ? radius : radius / static_cast<Real>(span) * (1 + Real(1e-6));
+  radius = s.cell;
   auto count = [&](Real a, Real b) {
     const double n = std::floor(static_cast<double>(b - a) / static_cast<double>(radius)) + 1.0;
     return n < 1.0 ? 1 : static_cast<int>(n);

@@ -9,8 +9,9 @@ namespace surge::neighbour {
 
 struct GridSpec {
   Vec3 lo{};     // lower corner, in the case's local coordinates
-  Real cell = 1; // cell edge, >= interaction radius
+  Real cell = 1; // cell edge, >= interaction radius / span
   int nx = 1, ny = 1, nz = 1;
+  int span = 1; // stencil half-width in cells: (2 span + 1)^3 cells cover the interaction radius
 
   [[nodiscard]] SURGE_HD std::uint32_t cells() const { return static_cast<std::uint32_t>(nx) * ny * nz; }
   [[nodiscard]] SURGE_HD int coord(Real x, Real lo_c, int n) const {
@@ -23,8 +24,9 @@ struct GridSpec {
   }
 };
 
-// Builds a grid over [lo, hi] with cells of at least `radius`.
-GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius);
+// Builds a grid over [lo, hi] with cells of at least radius / span. span 2 (cells of h for
+// an SPH support of 2h) scans 125 h^3 around a particle instead of 216 h^3 with span 1.
+GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius, int span = 1);
 
 // What a kernel needs to walk neighbours: the grid, the sorted positions and
 // cell_start. Particles are sorted by (cell, class): within each cell the class-0
@@ -37,15 +39,16 @@ struct GridView {
   const Vec3* pos = nullptr;
 };
 
-// Calls row(first_cell, last_cell) for the 9 rows of up to 3 cells (along x) that
-// make up the 27-cell stencil around x, clipped to the grid.
+// Calls row(first_cell, last_cell) for the (2 span + 1)^2 rows of up to 2 span + 1 cells
+// (along x) that make up the stencil around x, clipped to the grid.
 template <class R>
 SURGE_HD inline void for_each_stencil_row(const GridSpec& s, const Vec3& x, R&& row) {
   const int cx = s.coord(x.x, s.lo.x, s.nx), cy = s.coord(x.y, s.lo.y, s.ny), cz = s.coord(x.z, s.lo.z, s.nz);
-  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < s.nx ? cx + 1 : s.nx - 1;
-  for (int z = cz - 1; z <= cz + 1; ++z) {
+  const int m = s.span;
+  const int x0 = cx - m > 0 ? cx - m : 0, x1 = cx + m < s.nx ? cx + m : s.nx - 1;
+  for (int z = cz - m; z <= cz + m; ++z) {
     if (z < 0 || z >= s.nz) continue;
-    for (int y = cy - 1; y <= cy + 1; ++y) {
+    for (int y = cy - m; y <= cy + m; ++y) {
       if (y < 0 || y >= s.ny) continue;
       const int base = s.nx * (y + s.ny * z);
       row(base + x0, base + x1);
@@ -65,7 +68,7 @@ SURGE_HD inline void scan_range(const GridView& g, const Vec3& x, Real r2max, st
 }
 
 // Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
-// scanning the 27 cells around x as 9 contiguous rows. Includes x's own particle.
+// scanning the stencil around x as contiguous rows. Includes x's own particle.
 template <class F>
 SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
   for_each_stencil_row(

@@ -8,7 +8,6 @@ void ParticleStore::upload(const HostParticles& h) {
   par::upload(pos_, h.pos);
   par::upload(vel_, h.vel);
   par::upload(vel_prev_, h.vel_prev.size() == n ? h.vel_prev : h.vel);
-  par::upload(pos_prev_, h.pos);
   par::upload(rho_, h.rho);
   par::upload(rho_prev_, h.rho_prev.size() == n ? h.rho_prev : h.rho);
   par::upload(press_, h.press);
@@ -40,6 +39,8 @@ void ParticleStore::download(HostParticles& h, bool history) const {
   }
 }
 
+void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<std::size_t>(n_)); }
+
 ParticleView ParticleStore::view() {
   return {n_,           pos_.data(),  vel_.data(),      vel_prev_.data(), pos_prev_.data(),
           acc_.data(),  rho_.data(),  rho_prev_.data(), drho_.data(),     press_.data(),
@@ -64,19 +65,16 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   reorder(pos_, tmp3_, perm);
   reorder(vel_, tmp3_, perm);
   reorder(vel_prev_, tmp3_, perm);
-  reorder(pos_prev_, tmp3_, perm);
-  reorder(acc_, tmp3_, perm);
   reorder(rho_, tmp1_, perm);
   reorder(rho_prev_, tmp1_, perm);
-  reorder(drho_, tmp1_, perm);
-  reorder(press_, tmp1_, perm);
-  reorder(vsig_, tmp1_, perm);
+  // acc, drho, press and vsig are recomputed after every sort, and pos_prev is scratch
+  // within one symplectic step: none of them is carried through the sort.
   reorder(kind_, tmpb_, perm);
   reorder(id_, tmpu_, perm);
   const int live = grid.build_cell_start(n_);
   const int dropped = n_ - live;
   n_ = live;
-  for (auto* b : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b->truncate(static_cast<std::size_t>(live));
+  for (auto* b : {&pos_, &vel_, &vel_prev_, &acc_}) b->truncate(static_cast<std::size_t>(live));
   for (auto* b : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b->truncate(static_cast<std::size_t>(live));
   kind_.truncate(static_cast<std::size_t>(live));
   id_.truncate(static_cast<std::size_t>(live));

@@ -35,7 +35,7 @@ struct ParticleView {
   Vec3* pos = nullptr;
   Vec3* vel = nullptr;
   Vec3* vel_prev = nullptr; // v^{n-1} (Verlet) or v^n (symplectic predictor)
-  Vec3* pos_prev = nullptr; // r^n for the symplectic scheme
+  Vec3* pos_prev = nullptr; // r^n for the symplectic scheme (scratch within a step; null unless reserved)
   Vec3* acc = nullptr;
   Real* rho = nullptr;
   Real* rho_prev = nullptr;
@@ -56,6 +56,8 @@ public:
   void download(HostParticles& h, bool history = false) const;
 
   [[nodiscard]] int size() const { return n_; }
+  // Allocates pos_prev (scratch of the symplectic scheme; null in views until then).
+  void reserve_position_scratch();
   [[nodiscard]] ParticleView view();
   // Sorts by cell, reorders every field and drops particles marked Removed.
   // Returns the number of particles dropped.

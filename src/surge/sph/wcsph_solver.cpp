@@ -227,7 +227,7 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
       lo[k] = std::fmin(lo[k], p[k]);
       hi[k] = std::fmax(hi[k], p[k]);
     }
-  grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support()));
+  grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(init.particles);
 }
 
@@ -275,6 +275,7 @@ StepStats WcsphSolver::step(double dt_max) {
   s.dt = dt_d;
   const Real dt = static_cast<Real>(dt_d);
   const Real rho0 = prm_.eos.rho0;
+  if (symplectic_) store_.reserve_position_scratch();
   const auto p = store_.view();
   if (!symplectic_) {
     detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0);
