@@ -94,7 +94,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string bytes = ss.str();
-  if (bytes.size() < sizeof magic || std::memcmp(bytes.data(), magic, sizeof magic) != 0)
+  // Version 1 (before the DEM state was added) is read too: the same layout without it.
+  const bool v1 = bytes.size() >= sizeof magic && std::memcmp(bytes.data(), magic, sizeof magic - 1) == 0 &&
+                  bytes[sizeof magic - 1] == '1';
+  if (bytes.size() < sizeof magic || (!v1 && std::memcmp(bytes.data(), magic, sizeof magic) != 0))
     throw InputError(path, 0, "", "not a surge checkpoint");
   Reader r(bytes, path);
   for (std::size_t k = 0; k < sizeof magic; ++k) (void)r.get<char>();
@@ -121,8 +124,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.rho_prev = r.get_vec<Real>();
   p.kind = r.get_vec<std::uint8_t>();
   p.id = r.get_vec<std::uint32_t>();
-  const auto dem = r.get_vec<char>();
-  c.dem_state.assign(dem.begin(), dem.end());
+  if (!v1) {
+    const auto dem = r.get_vec<char>();
+    c.dem_state.assign(dem.begin(), dem.end());
+  }
   const auto n = p.pos.size();
   if (p.vel.size() != n || p.vel_prev.size() != n || p.rho.size() != n || p.rho_prev.size() != n ||
       p.kind.size() != n || p.id.size() != n || !r.done())
