@@ -320,6 +320,8 @@ int run(const Case& c, const RunOptions& opt) {
   const double max_removed = c.sph.max_removed_share * static_cast<double>(init.n_fluid);
   auto last_report = Clock::now();
   const auto loop0 = Clock::now();
+  const long steps0 = solver.step_count();
+  const double t0 = t;
   std::string failure;
   while (t < c.time.end - eps) {
     if (opt.stop && *opt.stop) break;
@@ -375,8 +377,9 @@ int run(const Case& c, const RunOptions& opt) {
     if (!opt.quiet && (opt.progress_tty ? since > 0.5 : since > opt.report_every_s)) {
       last_report = now;
       const double el = std::chrono::duration<double>(now - loop0).count();
-      const double sps = static_cast<double>(solver.step_count()) / el;
-      const double eta_s = el * (c.time.end - t) / std::max(t, 1e-12);
+      // Rates over this session only (a restart starts the clock at its checkpoint).
+      const double sps = static_cast<double>(solver.step_count() - steps0) / el;
+      const double eta_s = el * (c.time.end - t) / std::max(t - t0, 1e-12);
       std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %.1f steps/s  dt %.2e s  ETA %s%s",
                    opt.progress_tty ? "\r" : "", t, c.time.end, 100.0 * t / c.time.end, sps, s.dt, hms(eta_s).c_str(),
                    opt.progress_tty ? "   " : "\n");
