@@ -58,9 +58,9 @@ int main(int argc, char** argv) {
   const double sps = n * static_cast<double>(steps) / wall;
   std::printf("{\"spheres\": %zu, \"threads\": %d, \"steps\": %ld, \"bonds\": %ld, \"sphere_steps_per_s\": %.4g, "
               "\"contacts_per_sphere\": %.2f, \"ns_per_contact_per_core\": %.1f, \"bytes_per_sphere\": %.0f, "
-              "\"seconds\": %.2f}\n",
+              "\"sort_share\": %.3f, \"seconds\": %.2f}\n",
               sp.size(), par::threads(), steps, bonds, sps, contacts / n,
               1e9 * wall * par::threads() / (static_cast<double>(steps) * contacts),
-              static_cast<double>(u.ru_maxrss) * 1024.0 / n, wall);
+              static_cast<double>(u.ru_maxrss) * 1024.0 / n, s.time_sort / s.time_total, wall);
   return 0;
 }

@@ -131,6 +131,9 @@ public:
   [[nodiscard]] int size() const { return n_; }
   DemView view();
 
+  // Timing of the steps so far, seconds: sort (neighbour search + reordering), everything.
+  double time_sort = 0, time_total = 0;
+
 private:
   void sort_spheres();
   // Neighbour search radius: touching spheres, and bonded ones pulled slightly apart.
