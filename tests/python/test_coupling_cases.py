@@ -1,6 +1,7 @@
 """End-to-end checks of the SPH-DEM coupling through the program and its case files:
-Archimedes on a fixed submerged sphere (coarse end, D/6), the paper's resolution
-warnings in `surge check`, and clean rejection of a bad sphere gauge."""
+Archimedes on a fixed submerged sphere and a floating sphere (coarse end, D/6), bitwise
+restart of a coupled run, the paper's resolution warnings in `surge check`, and clean
+rejection of a bad sphere gauge."""
 import math
 import os
 import shutil
@@ -46,6 +47,36 @@ if r.returncode == 0:
     print("     Fz = %.4f N, rho g V = %.4f N, ratio %.3f, r_eff = R + %.2f dp" % (fz, fb, fz / fb, (r_eff - R) / dp))
     check(R <= r_eff <= R + 0.5 * dp, "buoyancy: effective surface within [R, R + dp/2]")
     check(abs(fx) < 0.03 * fb, "no net horizontal force (|Fx| = %.4f N)" % abs(fx))
+
+# --- a floating sphere (cases/floating.yaml, density 500) at D/6: it must float with its
+# displaced volume (geometric, from its draught) between the values for an effective
+# surface at R (exactly V/2) and at R + dp/2 (the gap effect bound used above), averaged
+# over 0.5-1 s; 0.02 V allowed on top for the remaining heave.
+def cap(d, r):
+    d = min(max(d, 0.0), 2 * r)
+    return math.pi * d * d * (3 * r - d) / 3
+
+
+def displaced_for_effective_radius(re, r, half):
+    lo, hi = 0.0, 2 * re  # draught of the effective sphere holding `half` below the surface
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if cap(mid, re) < half else (lo, mid)
+    return cap(lo - (re - r), r)
+
+
+out = os.path.join(WORK, "float6")
+r = run(["run", os.path.join(CASES, "floating.yaml"), "--out", out, "--quiet"])
+check(r.returncode == 0, "floating D/6 runs (%s)" % r.stderr[-300:])
+if r.returncode == 0:
+    g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
+    R, dp = 0.03, 0.01
+    V = 4 / 3 * math.pi * R**3
+    m = g["time"] >= 0.5
+    ratio = np.mean([cap(s - (z - R), R) for s, z in zip(g["surface"][m], g["z"][m])]) / V
+    low = displaced_for_effective_radius(R + dp / 2, R, V / 2) / V
+    print("     displaced volume %.3f V (bounds %.3f .. 0.52)" % (ratio, low))
+    check(low <= ratio <= 0.52, "floating sphere: displaced volume within the gap-effect bounds")
 
 # --- restart of a coupled run (a sinking sphere): stopped at 0.02 s and continued to 0.04 s
 # it ends bitwise identical to the straight run (water, spheres, gauges).
