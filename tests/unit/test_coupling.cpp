@@ -196,7 +196,7 @@ TEST(Coupling, SameResultOnOneAndTwoThreads) {
     par::set_threads(threads);
     Coupled s(blob_case("verlet"));
     for (int k = 0; k < 15; ++k) s.step();
-    return std::make_pair(s.parts.dem->spheres()[0], s.parts.coupling->fluid_forces()[0]);
+    return std::make_pair(s.parts.dem->spheres()[0], s.parts.dem->external_forces()[0]);
   };
   const auto a = run(1), b = run(2);
   par::set_threads(2);

@@ -57,10 +57,6 @@ SphDemCoupling::SphDemCoupling(const BodyLayout& layout, int n_spheres, Real dt_
   par::upload(owner_, layout.owner);
   par::upload(start_, layout.start);
   slot_.resize(n_body_);
-  force_.resize(static_cast<std::size_t>(n_spheres));
-  moment_.resize(static_cast<std::size_t>(n_spheres));
-  par::fill(force_, Vec3{});
-  par::fill(moment_, Vec3{});
 }
 
 void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
@@ -72,9 +68,9 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto p = sph.view();
   detail::index_bodies(p, first_id_, slot_.data());
   dem.rigid_states(state_);
-  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_, force_.data(),
-                         moment_.data());
-  dem.set_external(force_, moment_);
+  // Written straight into the DEM's held external force and moment.
+  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_,
+                         dem.external_force().data(), dem.external_torque().data());
 }
 
 void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {

@@ -24,7 +24,8 @@ public:
   // last rate evaluation (Eq. 23-24 without the sphere's own weight, which the DEM adds):
   //   F_k = sum_b m_b (a_b - g),  M_k = sum_b m_b (a_b - g) x (r_b - x_k).
   // Each sphere sums its own body particles in a fixed order: no atomics, and the same
-  // result on any number of threads.
+  // result on any number of threads. The result is the DEM's held external force and
+  // moment (DemSolver::external_forces / external_torques read it back).
   void reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem);
   // Places every body particle from its sphere's state: r_b = x_k + R(q_k) r_b0,
   // v_b = v_k + w_k x (r_b - x_k).
@@ -32,8 +33,6 @@ public:
   // reduce_forces, DEM sub-steps over dt, place_bodies. Returns the number of sub-steps.
   int after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt);
 
-  [[nodiscard]] std::vector<Vec3> fluid_forces() const { return par::download(force_); }   // by sphere id
-  [[nodiscard]] std::vector<Vec3> fluid_moments() const { return par::download(moment_); } // about the centres
   [[nodiscard]] std::size_t n_body() const { return n_body_; }
   [[nodiscard]] Real dt_dem() const { return dt_dem_; }
 
@@ -45,7 +44,6 @@ private:
   Real dt_dem_ = 0;
   par::Buffer<Vec3> offset_;
   par::Buffer<std::uint32_t> owner_, start_, slot_; // slot_: body index -> current SPH array index
-  par::Buffer<Vec3> force_, moment_;
   par::Buffer<dem::RigidState> state_;
 };
 

@@ -534,27 +534,34 @@ void load_buffer(const std::string& in, std::size_t& pos, par::Buffer<T>& b, std
 }
 } // namespace
 
+// The buffers that make up the state, with their elements per sphere: one list for
+// save() and restore(), so they cannot drift apart.
+template <class Self, class F>
+void DemSolver::for_each_state_buffer(Self& s, F&& f) {
+  f(s.pos_, 1);
+  f(s.vel_, 1);
+  f(s.omega_, 1);
+  f(s.quat_, 4);
+  f(s.radius_, 1);
+  f(s.mass_, 1);
+  f(s.inertia_, 1);
+  f(s.material_, 1);
+  f(s.fixed_, 1);
+  f(s.id_, 1);
+  f(s.broken_, 1);
+  f(s.ncontact_, 1);
+  f(s.force_, 1);
+  f(s.torque_, 1);
+  f(s.ext_force_, 1);
+  f(s.ext_torque_, 1);
+  f(s.hist_old_, max_contacts);
+}
+
 std::string DemSolver::save() const {
   std::string out;
   const auto n = static_cast<std::uint64_t>(n_);
   out.append(reinterpret_cast<const char*>(&n), sizeof n);
-  save_buffer(out, pos_);
-  save_buffer(out, vel_);
-  save_buffer(out, omega_);
-  save_buffer(out, quat_);
-  save_buffer(out, radius_);
-  save_buffer(out, mass_);
-  save_buffer(out, inertia_);
-  save_buffer(out, material_);
-  save_buffer(out, fixed_);
-  save_buffer(out, id_);
-  save_buffer(out, broken_);
-  save_buffer(out, ncontact_);
-  save_buffer(out, force_);
-  save_buffer(out, torque_);
-  save_buffer(out, ext_force_);
-  save_buffer(out, ext_torque_);
-  save_buffer(out, hist_old_);
+  for_each_state_buffer(*this, [&](const auto& b, int) { save_buffer(out, b); });
   return out;
 }
 
@@ -565,32 +572,9 @@ void DemSolver::restore(const std::string& bytes) {
   if (n != static_cast<std::uint64_t>(n_)) throw std::invalid_argument("DEM state holds another number of spheres");
   std::size_t pos = sizeof n;
   const auto N = static_cast<std::size_t>(n_);
-  load_buffer(bytes, pos, pos_, N);
-  load_buffer(bytes, pos, vel_, N);
-  load_buffer(bytes, pos, omega_, N);
-  load_buffer(bytes, pos, quat_, 4 * N);
-  load_buffer(bytes, pos, radius_, N);
-  load_buffer(bytes, pos, mass_, N);
-  load_buffer(bytes, pos, inertia_, N);
-  load_buffer(bytes, pos, material_, N);
-  load_buffer(bytes, pos, fixed_, N);
-  load_buffer(bytes, pos, id_, N);
-  load_buffer(bytes, pos, broken_, N);
-  load_buffer(bytes, pos, ncontact_, N);
-  load_buffer(bytes, pos, force_, N);
-  load_buffer(bytes, pos, torque_, N);
-  load_buffer(bytes, pos, ext_force_, N);
-  load_buffer(bytes, pos, ext_torque_, N);
-  load_buffer(bytes, pos, hist_old_, N * max_contacts);
+  for_each_state_buffer(*this, [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
   hist_new_.resize(N * max_contacts);
-}
-
-void DemSolver::set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque) {
-  if (force.size() != static_cast<std::size_t>(n_) || torque.size() != static_cast<std::size_t>(n_))
-    throw std::invalid_argument("external forces need one entry per sphere");
-  par::copy(ext_force_, force);
-  par::copy(ext_torque_, torque);
 }
 
 void DemSolver::rigid_states(par::Buffer<RigidState>& out) {
@@ -631,6 +615,18 @@ long DemSolver::bond_touching(Real gap) {
 WallLoad DemSolver::wall_load(int plane, int mesh, Vec3 about) {
   const DemView v = view();
   return detail::wall_load(v, materials_.data(), planes_.data(), triangles_.data(), plane, mesh, about);
+}
+
+bool DemSolver::finite() {
+  const Vec3* pos = pos_.data();
+  const int bad = par::parallel_reduce(
+      n_, 0,
+      SURGE_LAMBDA(int i) {
+        const Vec3 x = pos[i];
+        return (std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z)) ? 0 : 1;
+      },
+      par::Sum{});
+  return bad == 0;
 }
 
 long DemSolver::broken_bonds() const {

@@ -111,9 +111,11 @@ public:
   [[nodiscard]] Real critical_dt(Real factor) const;
   void step(Real dt);
   // External force and moment on each sphere, by id (n entries each, in the execution
-  // space), held until replaced; gravity is not included.
-  void set_external(const par::Buffer<Vec3>& force, const par::Buffer<Vec3>& torque);
+  // space; the fluid's in a coupled run), held until overwritten; gravity is not included.
+  par::Buffer<Vec3>& external_force() { return ext_force_; }
+  par::Buffer<Vec3>& external_torque() { return ext_torque_; }
   [[nodiscard]] std::vector<Vec3> external_forces() const { return par::download(ext_force_); }
+  [[nodiscard]] std::vector<Vec3> external_torques() const { return par::download(ext_torque_); }
   // The complete state (spheres, orientations, contact history, broken bonds, external
   // forces) as bytes, and back: a restored solver continues bit for bit. restore() needs a
   // solver built from the same case (materials, walls, sphere count).
@@ -129,12 +131,16 @@ public:
   [[nodiscard]] std::vector<std::uint32_t> contact_counts() const; // by id
   [[nodiscard]] std::vector<std::uint32_t> intact_bonds() const;   // id pairs (lower id first), flattened
   [[nodiscard]] int size() const { return n_; }
+  // True when every sphere position is finite (a reduction; nothing is copied to the host).
+  [[nodiscard]] bool finite();
   DemView view();
 
   // Timing of the steps so far, seconds: sort (neighbour search + reordering), everything.
   double time_sort = 0, time_total = 0;
 
 private:
+  template <class Self, class F>
+  static void for_each_state_buffer(Self& s, F&& f);
   void sort_spheres();
   // Neighbour search radius: touching spheres, and bonded ones pulled slightly apart.
   [[nodiscard]] Real reach() const { return Real(2.1) * max_radius_; }

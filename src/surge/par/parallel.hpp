@@ -229,16 +229,6 @@ void gather(Buffer<T>& field, Buffer<T>& tmp, const std::uint32_t* perm, int n, 
   field.swap(tmp);
 }
 
-// dst <- src, both in the execution space.
-template <class T>
-void copy(Buffer<T>& dst, const Buffer<T>& src) {
-  dst.resize(src.size());
-  T* out = dst.data();
-  const T* in = src.data();
-  parallel_for(
-      static_cast<int>(src.size()), SURGE_LAMBDA(int i) { out[i] = in[i]; });
-}
-
 template <class T>
 void fill(Buffer<T>& b, T value) {
   T* p = b.data();

@@ -185,10 +185,5 @@ CoupledParts::CoupledParts(const Case& c, sph::InitialState& init) : setup(dem_s
   coupling = std::make_unique<coupling::SphDemCoupling>(body.layout, static_cast<int>(setup.spheres.size()), dt_dem);
 }
 
-bool CoupledParts::finite() const {
-  for (const auto& s : dem->spheres())
-    if (!std::isfinite(s.pos.x) || !std::isfinite(s.pos.y) || !std::isfinite(s.pos.z)) return false;
-  return true;
-}
 
 } // namespace surge::sim

@@ -48,7 +48,6 @@ struct CoupledParts {
   std::size_t fluid_removed = 0;
   int layers = 0;
   CoupledParts(const Case& c, sph::InitialState& init);
-  [[nodiscard]] bool finite() const;
 };
 
 } // namespace surge::sim

@@ -224,8 +224,8 @@ int run(const Case& c, const RunOptions& opt) {
     std::vector<Vec3> ff, fm;
     if (cp) {
       sp = cp->dem->spheres();
-      ff = cp->coupling->fluid_forces();
-      fm = cp->coupling->fluid_moments();
+      ff = cp->dem->external_forces();
+      fm = cp->dem->external_torques();
     }
     auto v = gauges.sample(solver, [&](const GaugeSpec& g) {
       return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
@@ -341,7 +341,7 @@ int run(const Case& c, const RunOptions& opt) {
         }
       }
     }
-    if (cp && !cp->finite()) {
+    if (cp && !cp->dem->finite()) {
       std::ostringstream m;
       m << "diverged at t = " << t << " s (step " << solver.step_count()
         << "): a DEM sphere has a non-finite position (try a smaller dem.dt_factor or sph.cfl)";
