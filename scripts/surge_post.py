@@ -90,3 +90,19 @@ def read_front_data(path):
                 continue
             rows.append([float(v) for v in line.replace(",", " ").split()])
     return np.array(rows)
+
+
+def read_run_dp(run):
+    """The particle spacing a run used, from its case.yaml (every default filled in)."""
+    with open(os.path.join(run, "case.yaml")) as f:
+        return next(float(line.split(":")[1]) for line in f if line.startswith("dp:"))
+
+
+def finish_plot(fig, ax, xlabel, ylabel, png):
+    """Labels, grid and legend of a one-axis validation plot, saved as PNG."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)

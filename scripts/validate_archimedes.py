@@ -9,12 +9,16 @@ import argparse
 import json
 import math
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(__file__))
+import surge_post  # noqa: E402
 
 ap = argparse.ArgumentParser()
 ap.add_argument("runs", nargs="+")
@@ -29,8 +33,7 @@ rows = []
 for run in args.runs:
     with open(os.path.join(run, "summary.json")) as f:
         s = json.load(f)
-    with open(os.path.join(run, "case.yaml")) as f:
-        dp = next(float(line.split(":")[1]) for line in f if line.startswith("dp:"))
+    dp = surge_post.read_run_dp(run)
     d = np.genfromtxt(os.path.join(run, "gauges.csv"), delimiter=",", names=True)
     ax.plot(d["time"], d["fz"] / fb, label=f"dp = D/{D / dp:.0f}")
     m = d["time"] >= args.t0
@@ -39,13 +42,8 @@ for run in args.runs:
     rows.append((D / dp, s["particles"]["fluid"], s["particles"]["body"], s["steps"], s["wall_seconds"], ratio,
                  d["fz"][m].std() / fb, (r_eff - R) / dp, (r_eff - R) * 1000))
 ax.axhline(1.0, color="k", ls="--", label="rho g V")
-ax.set_xlabel("t [s]")
-ax.set_ylabel("F_z / (rho g V)")
 ax.set_ylim(0, 2.5)
-ax.grid(alpha=0.3)
-ax.legend()
-fig.tight_layout()
-fig.savefig(args.png, dpi=120)
+surge_post.finish_plot(fig, ax, "t [s]", "F_z / (rho g V)", args.png)
 rows.sort()
 print(f"| dp | fluid | body | steps | wall [s] | F_z / rho g V (t >= {args.t0} s) | std | r_eff - R [dp] | r_eff - R [mm] |")
 print("|---|---|---|---|---|---|---|---|---|")

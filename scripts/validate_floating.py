@@ -9,8 +9,12 @@ usage: validate_floating.py RUN_DIR [RUN_DIR ...] [--png OUT.png] [--from 0.5]
 import argparse
 import math
 import os
+import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(__file__))
+import surge_post  # noqa: E402
 
 ap = argparse.ArgumentParser()
 ap.add_argument("runs", nargs="+")
@@ -22,8 +26,7 @@ V = 4 / 3 * math.pi * R**3
 rows = []
 curves = []
 for run in args.runs:
-    with open(os.path.join(run, "case.yaml")) as f:
-        dp = next(float(line.split(":")[1]) for line in f if line.startswith("dp:"))
+    dp = surge_post.read_run_dp(run)
     g = np.genfromtxt(os.path.join(run, "gauges.csv"), delimiter=",", names=True)
     d = g["surface"] - (g["z"] - R)
     cap = math.pi * d**2 * (3 * R - d) / 3
@@ -45,9 +48,4 @@ if args.png:
     for k, t, c in sorted(curves, key=lambda x: x[0]):
         ax.plot(t, c, label=f"dp = D/{k:.0f}")
     ax.axhline(0.5, color="k", ls="--", label="V/2")
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel("displaced volume / V")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(args.png, dpi=120)
+    surge_post.finish_plot(fig, ax, "t [s]", "displaced volume / V", args.png)

@@ -31,8 +31,7 @@ args = ap.parse_args()
 D = 0.06
 runs = []
 for run in args.runs:
-    with open(os.path.join(run, "case.yaml")) as f:
-        dp = next(float(line.split(":")[1]) for line in f if line.startswith("dp:"))
+    dp = surge_post.read_run_dp(run)
     names, g = surge_post.read_gauges(os.path.join(run, "gauges.csv"))
     runs.append((dp, run, names, g, surge_post.read_summary(os.path.join(run, "summary.json"))))
 runs.sort(reverse=True)

@@ -15,12 +15,16 @@ Run first: surge run cases/water_entry.yaml --out out/we6 ; ... --set dp=0.00211
 import argparse
 import json
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(__file__))
+import surge_post  # noqa: E402
 
 ap = argparse.ArgumentParser()
 ap.add_argument("runs", nargs="+")
@@ -45,22 +49,13 @@ for run in args.runs:
     with open(os.path.join(run, "summary.json")) as f:
         s = json.load(f)
     d = np.genfromtxt(os.path.join(run, "gauges.csv"), delimiter=",", names=True)
-    dp = None
-    with open(os.path.join(run, "case.yaml")) as f:
-        for line in f:
-            if line.startswith("dp:"):
-                dp = float(line.split(":")[1])
+    dp = surge_post.read_run_dp(run)
     depth = surface - (d["z"] - R)
     ax.plot(d["time"], depth * 100, label=f"surge dp = D/{D / dp:.0f}")
     tf = min(args.t_final, d["time"][-1])
     rows.append((D / dp, dp, s["particles"]["fluid"], s["particles"]["body"], s["steps"], s["wall_seconds"], tf,
                  float(np.interp(tf, d["time"], depth)), float(np.interp(tf, t_ref, depth_ref))))
-ax.set_xlabel("t [s]")
-ax.set_ylabel("depth of the sphere's bottom below the still surface [cm]")
-ax.grid(alpha=0.3)
-ax.legend()
-fig.tight_layout()
-fig.savefig(args.png, dpi=120)
+surge_post.finish_plot(fig, ax, "t [s]", "depth of the sphere's bottom below the still surface [cm]", args.png)
 
 rows.sort()
 finest = rows[-1][7]

@@ -1,11 +1,11 @@
 #include "surge/coupling/body_particles.hpp"
 
 #include "surge/dem/rigid_state.hpp"
+#include "surge/geometry/sphere_index.hpp"
 #include "surge/sph/eos_tait.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace surge::coupling {
 
@@ -31,18 +31,6 @@ std::vector<Vec3d> body_offsets(double radius, double dp, int layers) {
   return out;
 }
 
-namespace {
-// Spheres by coarse cell, to find the spheres near a fluid particle quickly.
-struct SphereHash {
-  double cell;
-  std::unordered_map<long long, std::vector<int>> cells;
-  static long long key(long long i, long long j, long long k) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
-  }
-  [[nodiscard]] long long idx(double v) const { return static_cast<long long>(std::floor(v / cell)); }
-};
-} // namespace
-
 BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& spheres, int layers,
                              sph::InitialState& init) {
   BodySetup out;
@@ -51,26 +39,15 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
   // water starts with the sphere's volume excluded (one fluid particle per dp^3 cell).
   double rmax = 0;
   for (const auto& s : spheres) rmax = std::max(rmax, static_cast<double>(s.radius));
-  SphereHash hash{std::max(2 * rmax, 1e-9), {}};
-  for (std::size_t k = 0; k < spheres.size(); ++k) {
-    const Vec3d x(spheres[k].pos);
-    hash.cells[SphereHash::key(hash.idx(x.x), hash.idx(x.y), hash.idx(x.z))].push_back(static_cast<int>(k));
-  }
+  geometry::SphereIndex index(std::max(2 * rmax, 1e-9));
+  for (std::size_t k = 0; k < spheres.size(); ++k) index.add(static_cast<int>(k), Vec3d(spheres[k].pos));
   auto inside = [&](const Vec3& p) {
     const Vec3d x(p);
-    const long long i0 = hash.idx(x.x), j0 = hash.idx(x.y), k0 = hash.idx(x.z);
-    for (long long i = i0 - 1; i <= i0 + 1; ++i)
-      for (long long j = j0 - 1; j <= j0 + 1; ++j)
-        for (long long k = k0 - 1; k <= k0 + 1; ++k) {
-          const auto it = hash.cells.find(SphereHash::key(i, j, k));
-          if (it == hash.cells.end()) continue;
-          for (int s : it->second) {
-            const Vec3d d = x - Vec3d(spheres[static_cast<std::size_t>(s)].pos);
-            const double r = spheres[static_cast<std::size_t>(s)].radius;
-            if (dot(d, d) < r * r) return true;
-          }
-        }
-    return false;
+    return index.any_near(x, [&](int s) {
+      const Vec3d d = x - Vec3d(spheres[static_cast<std::size_t>(s)].pos);
+      const double r = spheres[static_cast<std::size_t>(s)].radius;
+      return dot(d, d) < r * r;
+    });
   };
   particles::HostParticles kept;
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
@@ -89,8 +66,7 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
   for (auto id : hp.id) next_id = std::max(next_id, id + 1);
   BodyLayout& L = out.layout;
   L.first_id = next_id;
-  const double rho0 = c.sph.rho0, g = c.g();
-  const sph::TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
+  const sph::TaitEos eos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
   for (std::size_t k = 0; k < spheres.size(); ++k) {
     L.start.push_back(static_cast<std::uint32_t>(L.offset.size()));
     dem::RigidState st;
@@ -101,10 +77,9 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
       const Vec3 off(o);
       const dem::RigidPoint p = dem::rigid_point(st, off);
       const Vec3d abs = Vec3d(p.pos) + init.origin;
-      auto rho = static_cast<Real>(rho0);
-      if (c.sph.hydrostatic_init)
-        for (const auto& f : c.fluid)
-          if (f.box.contains(abs)) rho = eos.density(static_cast<Real>(rho0 * g * (f.box.max.z - abs.z)));
+      auto rho = static_cast<Real>(c.sph.rho0);
+      for (const auto& f : c.fluid)
+        if (f.box.contains(abs)) rho = sph::still_water_density(c, eos, f, abs);
       hp.push(p.pos, p.vel, rho, Kind::Body, next_id++);
       L.offset.push_back(off);
       L.owner.push_back(static_cast<std::uint32_t>(k));

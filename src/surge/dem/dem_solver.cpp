@@ -572,7 +572,8 @@ void DemSolver::restore(const std::string& bytes) {
   if (n != static_cast<std::uint64_t>(n_)) throw std::invalid_argument("DEM state holds another number of spheres");
   std::size_t pos = sizeof n;
   const auto N = static_cast<std::size_t>(n_);
-  for_each_state_buffer(*this, [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
+  for_each_state_buffer(*this,
+                        [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
   hist_new_.resize(N * max_contacts);
 }

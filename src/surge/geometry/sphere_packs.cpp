@@ -1,12 +1,12 @@
 #include "surge/geometry/sphere_packs.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/geometry/sphere_index.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <unordered_map>
 
 namespace surge::geometry {
 
@@ -72,33 +72,16 @@ std::vector<SphereSpec> random_pack(const PackRegion& region, double radius, lon
   std::vector<SphereSpec> out;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
-  // Spheres by cell of size 2r: a new sphere checks the 27 cells around it.
-  const double cell = 2 * radius;
-  std::unordered_map<long long, std::vector<int>> grid;
-  auto key = [&](long long i, long long j, long long k) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
-  };
-  auto idx = [&](double v) { return static_cast<long long>(std::floor(v / cell)); };
+  SphereIndex index(2 * radius); // a new sphere checks the spheres in the 27 cells around it
   const long attempts = 200 * count + 10000;
   for (long a = 0; a < attempts && static_cast<long>(out.size()) < count; ++a) {
     Vec3d c;
     for (int k = 0; k < 3; ++k)
       c[k] = region.box.min[k] + radius + u(rng) * (region.box.max[k] - region.box.min[k] - 2 * radius);
-    bool free = true;
-    const long long i0 = idx(c.x), j0 = idx(c.y), k0 = idx(c.z);
-    for (long long i = i0 - 1; i <= i0 + 1 && free; ++i)
-      for (long long j = j0 - 1; j <= j0 + 1 && free; ++j)
-        for (long long k = k0 - 1; k <= k0 + 1 && free; ++k) {
-          const auto it = grid.find(key(i, j, k));
-          if (it == grid.end()) continue;
-          for (int s : it->second)
-            if (norm(out[static_cast<std::size_t>(s)].centre - c) < 2 * radius) {
-              free = false;
-              break;
-            }
-        }
-    if (!free || !region.holds(c, radius)) continue;
-    grid[key(i0, j0, k0)].push_back(static_cast<int>(out.size()));
+    const bool taken =
+        index.any_near(c, [&](int s) { return norm(out[static_cast<std::size_t>(s)].centre - c) < 2 * radius; });
+    if (taken || !region.holds(c, radius)) continue;
+    index.add(static_cast<int>(out.size()), c);
     out.push_back({c, radius});
   }
   return out;

@@ -185,5 +185,4 @@ CoupledParts::CoupledParts(const Case& c, sph::InitialState& init) : setup(dem_s
   coupling = std::make_unique<coupling::SphDemCoupling>(body.layout, static_cast<int>(setup.spheres.size()), dt_dem);
 }
 
-
 } // namespace surge::sim

@@ -10,6 +10,12 @@
 
 namespace surge::sph {
 
+Real still_water_density(const Case& c, const TaitEos& eos, const FluidRegion& f, const Vec3d& p) {
+  // Hydrostatic start: pressure from the depth below this region's top.
+  if (!c.sph.hydrostatic_init) return static_cast<Real>(c.sph.rho0);
+  return eos.density(static_cast<Real>(c.sph.rho0 * c.g() * (f.box.max.z - p.z)));
+}
+
 InitialState build_initial_state(const Case& c) {
   InitialState s;
   s.origin = c.domain.min;
@@ -18,7 +24,7 @@ InitialState build_initial_state(const Case& c) {
   for (const auto& w : c.walls)
     meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
 
-  const double g = c.g(), rho0 = c.sph.rho0;
+  const double rho0 = c.sph.rho0;
   const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
@@ -31,10 +37,7 @@ InitialState build_initial_state(const Case& c) {
         ++s.fluid_dropped_by_walls;
         continue;
       }
-      // Hydrostatic start: pressure from the depth below this region's top.
-      Real rho = static_cast<Real>(rho0);
-      if (c.sph.hydrostatic_init) rho = eos.density(static_cast<Real>(rho0 * g * (f.box.max.z - p.z)));
-      s.particles.push(local(p), Vec3(f.velocity), rho, Kind::Fluid, next_id++);
+      s.particles.push(local(p), Vec3(f.velocity), still_water_density(c, eos, f, p), Kind::Fluid, next_id++);
       ++s.n_fluid;
     }
   }

@@ -21,6 +21,11 @@ struct InitialState {
   std::size_t fluid_dropped_by_walls = 0;
 };
 
+// Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
+// with sph.hydrostatic_init, rho0 otherwise (the start of every fluid and submerged
+// body particle).
+[[nodiscard]] Real still_water_density(const Case& c, const TaitEos& eos, const FluidRegion& f, const Vec3d& p);
+
 // Builds fluid and wall particles from the case (meshes are read here).
 InitialState build_initial_state(const Case& c);
 
