@@ -62,14 +62,16 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
       n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
   grid.sort(pos_.data(), dead, n_);
   const std::uint32_t* perm = grid.permutation();
-  reorder(pos_, tmp3_, perm);
-  reorder(vel_, tmp3_, perm);
-  reorder(vel_prev_, tmp3_, perm);
-  reorder(rho_, tmp1_, perm);
-  reorder(rho_prev_, tmp1_, perm);
   // acc, drho, press and vsig are recomputed after every sort, and pos_prev is scratch
-  // within one symplectic step: none of them is carried through the sort.
-  reorder(kind_, tmpb_, perm);
+  // within one symplectic step: none of them is carried through the sort, so acc and
+  // drho serve as the gather scratch (no extra 16 B per particle), and cls, spent once
+  // the keys are built, as the scratch of kind.
+  reorder(pos_, acc_, perm);
+  reorder(vel_, acc_, perm);
+  reorder(vel_prev_, acc_, perm);
+  reorder(rho_, drho_, perm);
+  reorder(rho_prev_, drho_, perm);
+  reorder(kind_, cls_, perm);
   reorder(id_, tmpu_, perm);
   const int live = grid.build_cell_start(n_);
   const int dropped = n_ - live;
@@ -83,9 +85,9 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
 
 std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
-  for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_, &tmp3_}) b += x->bytes();
-  for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_, &tmp1_}) b += x->bytes();
-  return b + kind_.bytes() + cls_.bytes() + tmpb_.bytes() + id_.bytes() + tmpu_.bytes();
+  for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b += x->bytes();
+  for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b += x->bytes();
+  return b + kind_.bytes() + cls_.bytes() + id_.bytes() + tmpu_.bytes();
 }
 
 } // namespace surge::particles

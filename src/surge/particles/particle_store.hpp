@@ -73,10 +73,7 @@ private:
   par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
   par::Buffer<std::uint8_t> kind_, cls_;
   par::Buffer<std::uint32_t> id_;
-  par::Buffer<Vec3> tmp3_;
-  par::Buffer<Real> tmp1_;
   par::Buffer<std::uint32_t> tmpu_;
-  par::Buffer<std::uint8_t> tmpb_;
 };
 
 } // namespace surge::particles
