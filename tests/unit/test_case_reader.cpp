@@ -66,6 +66,11 @@ TEST(CaseReader, WrongType) {
   expect_error(test::tank_case(0.01) + "sph: {cfl: fast}\n", 7, "sph.cfl", "expected a number");
 }
 
+TEST(CaseReader, UnknownChoice) {
+  expect_error(test::tank_case(0.01) + "sph: {diffusion: fourtak}\n", 7, "sph.diffusion", "molteni or fourtakas");
+  expect_error(test::tank_case(0.01) + "sph: {integrator: euler}\n", 7, "sph.integrator", "verlet or symplectic");
+}
+
 TEST(CaseReader, NonPositiveSpacing) {
   std::string t = test::tank_case(0.01);
   t.replace(t.find("dp: "), std::string("dp: 0.010000").size(), "dp: -0.01");

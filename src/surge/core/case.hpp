@@ -36,6 +36,7 @@ struct SphConfig {
   double hmax = 0.0;                 // 0: from the fluid regions (highest water top - lowest water bottom)
   double c0 = 0.0;                   // 0: c0 = eta sqrt(g hmax); > 0 sets the speed of sound directly
   std::string integrator = "verlet"; // verlet | symplectic
+  std::string diffusion = "molteni"; // density diffusion: molteni (SPEC §2.3) | fourtakas (dynamic part only)
   int euler_every = 40;
   double rho_min = 0.7; // removal bounds, as fractions of rho0
   double rho_max = 1.3;

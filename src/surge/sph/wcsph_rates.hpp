@@ -2,6 +2,10 @@
 //   drho_i/dt = sum_j m_j v_ij . grad_i W_ij + D_i                 (continuity)
 //   D_i = delta h c0 sum_j m_j 4/(rho_i+rho_j) (rho_j-rho_i) (r_ji.grad_i W_ij)/(r^2+0.01h^2)
 //         (Molteni & Colagrossi 2009 delta-SPH; fluid-fluid pairs only)
+//   Fourtakas et al. (2019) variant (prm.fourtakas): rho_j - rho_i replaced by its dynamic
+//         part rho_j - rho_i - rho^H_ji, rho^H_ji = rho0 ((1 + rho0 g.r_ji / B)^(1/gamma) - 1),
+//         the hydrostatic density difference between the two positions, so that water at
+//         rest is not diffused towards uniform density (the plain term's drift near walls).
 //   dv_i/dt = -sum_j m_j ((p_i+p_j)/(rho_i rho_j) + Pi_ij) grad_i W_ij + g
 //   Pi_ij = -alpha c0 mu_ij / rho_mean,  mu_ij = h v_ij.r_ij/(r^2+0.01h^2) when v_ij.r_ij < 0
 //         (Monaghan 1992; the standard form with rho_mean = (rho_i+rho_j)/2, not the
@@ -22,6 +26,7 @@ struct WcsphParams {
   Real mass = 1;           // rho0 dp^3, the same for every SPH particle
   Real alpha = Real(0.01); // artificial viscosity
   Real delta = Real(0.1);  // density diffusion
+  bool fourtakas = false;  // diffuse only the dynamic part of density (Fourtakas et al. 2019)
   Vec3 gravity{};
 };
 
@@ -59,7 +64,11 @@ struct Rates {
     const Real mu = h * vr * inv_r2e;
     const Real amu = mu < 0 ? -mu : mu;
     vsig = amu > vsig ? amu : vsig;
-    if (fluid_i && fluid_j) diff += prm.mass * 4 * inv_rho_sum * (rhoj - rhoi) * (-dot(rij, grad)) * inv_r2e;
+    if (fluid_i && fluid_j) {
+      // rho^H_ji from the EOS's inverse at the hydrostatic pressure difference rho0 g.r_ji.
+      const Real rho_h = prm.fourtakas ? prm.eos.density(-prm.eos.rho0 * dot(prm.gravity, rij)) - prm.eos.rho0 : 0;
+      diff += prm.mass * 4 * inv_rho_sum * (rhoj - rhoi - rho_h) * (-dot(rij, grad)) * inv_r2e;
+    }
     Real coef = (pi + p.press[j]) / (rhoi * rhoj);
     if (vr < 0) coef -= prm.alpha * c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
     acc -= grad * (prm.mass * coef);

@@ -220,6 +220,7 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
   prm_.alpha = static_cast<Real>(c.sph.alpha);
   prm_.delta = static_cast<Real>(c.sph.delta);
   prm_.gravity = Vec3(c.gravity);
+  prm_.fourtakas = c.sph.diffusion == "fourtakas";
   symplectic_ = c.sph.integrator == "symplectic";
   dom_lo_ = Vec3{};
   dom_hi_ = Vec3(c.domain.max - c.domain.min);
