@@ -354,8 +354,8 @@ Case parse(const YAML::Node& root, Reader& r) {
 
   if (const auto s = root["sph"]; s.IsDefined()) {
     r.check_keys(s, "sph",
-                 {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "diffusion", "euler_every",
-                  "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
+                 {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "diffusion",
+                  "euler_every", "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
     auto& p = c.sph;
     p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
     p.alpha = r.get(s, "sph", "alpha", p.alpha);
