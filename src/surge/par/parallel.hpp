@@ -71,6 +71,22 @@ void parallel_for(int n, F f) {
 #endif
 }
 
+// Like parallel_for, for loops whose cost per index varies a lot (neighbour sums: a
+// fluid particle has ~60 neighbours, a wall particle far from water none). Particles
+// sorted by cell put the water in one part of the index range, so equal static halves
+// leave one CPU thread idle; dynamic chunks balance them. Results do not depend on the
+// schedule, since each i writes only to itself.
+template <class F>
+void parallel_for_uneven(int n, F f) {
+#if defined(SURGE_BACKEND_CUDA)
+  parallel_for(n, f);
+#else
+  if (n <= 0) return;
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int i = 0; i < n; ++i) f(i);
+#endif
+}
+
 // op-reduction of f(i) over [0, n). op must be associative and commutative;
 // for floating-point sums the rounding depends on the thread count.
 template <class T, class F, class Op>

@@ -66,7 +66,7 @@ namespace detail {
 void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
-  par::parallel_for(
+  par::parallel_for_uneven(
       p.n, SURGE_LAMBDA(int i) {
         const Rates r = wcsph_rates(prm, g, p, i);
         p.acc[i] = r.acc;
