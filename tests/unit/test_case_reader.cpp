@@ -71,6 +71,11 @@ TEST(CaseReader, UnknownChoice) {
   expect_error(test::tank_case(0.01) + "sph: {integrator: euler}\n", 7, "sph.integrator", "verlet or symplectic");
 }
 
+TEST(CaseReader, NegativeCheckpointInterval) {
+  expect_error(test::tank_case(0.01), 0, "time.checkpoint_every_wall", "must not be negative",
+               {"time.checkpoint_every_wall=-1"});
+}
+
 TEST(CaseReader, NonPositiveSpacing) {
   std::string t = test::tank_case(0.01);
   t.replace(t.find("dp: "), std::string("dp: 0.010000").size(), "dp: -0.01");

@@ -24,6 +24,9 @@ struct TimeConfig {
   double gauge_every = 0.0; // 0: every output_every / 10
   double dt_min = 0.0;      // 0: 1e-3 of the first time step; below this the run is stopped
   long max_steps = 0;       // > 0: stop after this many steps (benchmarks)
+  // Wall-clock seconds between checkpoints written between outputs (0: only with outputs),
+  // so that a killed run loses at most this much work however far apart the outputs are.
+  double checkpoint_every_wall = 1800;
 };
 
 struct SphConfig {

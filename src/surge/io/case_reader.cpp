@@ -334,12 +334,15 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
 
   if (const auto t = root["time"]; t.IsDefined()) {
-    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min", "max_steps"});
+    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min", "max_steps", "checkpoint_every_wall"});
     c.time.end = r.get(t, "time", "end", c.time.end);
     c.time.output_every = r.get(t, "time", "output_every", c.time.output_every);
     c.time.gauge_every = r.get(t, "time", "gauge_every", c.time.gauge_every);
     c.time.dt_min = r.get(t, "time", "dt_min", c.time.dt_min);
     c.time.max_steps = r.get(t, "time", "max_steps", c.time.max_steps);
+    c.time.checkpoint_every_wall = r.get(t, "time", "checkpoint_every_wall", c.time.checkpoint_every_wall);
+    if (c.time.checkpoint_every_wall < 0)
+      r.fail(t["checkpoint_every_wall"], "time.checkpoint_every_wall", "must not be negative (0: with outputs only)");
     if (c.time.max_steps < 0) r.fail(t["max_steps"], "time.max_steps", "must not be negative");
     if (!(c.time.end > 0)) r.fail(t["end"], "time.end", "must be positive");
     if (!(c.time.output_every > 0)) r.fail(t["output_every"], "time.output_every", "must be positive");
@@ -629,7 +632,8 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "time" << YAML::Value << YAML::BeginMap << YAML::Key << "end" << YAML::Value << c.time.end
     << YAML::Key << "output_every" << YAML::Value << c.time.output_every << YAML::Key << "gauge_every" << YAML::Value
     << c.time.gauge_every << YAML::Key << "dt_min" << YAML::Value << c.time.dt_min << YAML::Key << "max_steps"
-    << YAML::Value << c.time.max_steps << YAML::EndMap;
+    << YAML::Value << c.time.max_steps << YAML::Key << "checkpoint_every_wall" << YAML::Value
+    << c.time.checkpoint_every_wall << YAML::EndMap;
   e << YAML::Key << "gravity" << YAML::Value;
   vec(c.gravity);
   e << YAML::Key << "domain" << YAML::Value;

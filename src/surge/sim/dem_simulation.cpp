@@ -103,16 +103,8 @@ int run_dem(const Case& c, const RunOptions& opt) {
   };
   double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   std::vector<double> frame_times;
-  auto write_output = [&] {
-    const io::SphereFrame f = sphere_frame(solver);
-    for (const auto& p : f.pos)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false; // keep the last good files
-    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
-    char name[64];
-    std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
-    io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
-    pvd.add(t, std::string("particles/") + name);
-    frame_times.push_back(t);
+  auto last_checkpoint = Clock::now();
+  auto write_checkpoint = [&] {
     io::Checkpoint k;
     k.time = t;
     k.steps = steps;
@@ -123,6 +115,19 @@ int run_dem(const Case& c, const RunOptions& opt) {
     k.gauge_rows = rows;
     k.dem_state = solver.save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
+    last_checkpoint = Clock::now();
+  };
+  auto write_output = [&] {
+    const io::SphereFrame f = sphere_frame(solver);
+    for (const auto& p : f.pos)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false; // keep the last good files
+    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
+    char name[64];
+    std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
+    io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
+    pvd.add(t, std::string("particles/") + name);
+    frame_times.push_back(t);
+    write_checkpoint();
     return true;
   };
   if (opt.restart) {
@@ -169,6 +174,12 @@ int run_dem(const Case& c, const RunOptions& opt) {
         return 3;
       }
       write_summary();
+    } else if (c.time.checkpoint_every_wall > 0 &&
+               std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= c.time.checkpoint_every_wall &&
+               solver.finite()) {
+      // Between outputs: the state and the gauge rows so far, no frame.
+      if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
+      write_checkpoint();
     }
     const auto now = Clock::now();
     if (!opt.quiet &&

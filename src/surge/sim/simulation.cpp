@@ -235,6 +235,7 @@ int run(const Case& c, const RunOptions& opt) {
     rows.push_back(std::move(v));
   };
   double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
+  auto last_checkpoint = Clock::now();
   auto write_checkpoint = [&] {
     io::Checkpoint k;
     k.time = t;
@@ -250,6 +251,7 @@ int run(const Case& c, const RunOptions& opt) {
     solver.download(k.particles, true);
     if (cp) k.dem_state = cp->dem->save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
+    last_checkpoint = Clock::now();
   };
   auto write_output = [&] {
     solver.refresh();
@@ -371,6 +373,13 @@ int run(const Case& c, const RunOptions& opt) {
     if (t >= next_out - eps) {
       next_out += c.time.output_every; // before the checkpoint is written: a restart continues from here
       write_output();
+    } else if (c.time.checkpoint_every_wall > 0 &&
+               std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= c.time.checkpoint_every_wall) {
+      // Between outputs: the state, the gauge rows so far and the summary, no frame.
+      io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
+      rows_written = rows.size();
+      write_checkpoint();
+      write_summary("running", 0, "");
     }
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_report).count();
