@@ -103,8 +103,11 @@ int run_dem(const Case& c, const RunOptions& opt) {
   };
   double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   std::vector<double> frame_times;
-  auto last_checkpoint = Clock::now();
-  auto write_checkpoint = [&] {
+  WallCheckpoints wall_checkpoints(c.time.checkpoint_every_wall);
+  // The gauge rows so far and the checkpoint: with every output, and between outputs
+  // when a wall-clock checkpoint is due.
+  auto save_progress = [&] {
+    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
     io::Checkpoint k;
     k.time = t;
     k.steps = steps;
@@ -115,19 +118,18 @@ int run_dem(const Case& c, const RunOptions& opt) {
     k.gauge_rows = rows;
     k.dem_state = solver.save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
-    last_checkpoint = Clock::now();
+    wall_checkpoints.written();
   };
   auto write_output = [&] {
     const io::SphereFrame f = sphere_frame(solver);
     for (const auto& p : f.pos)
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false; // keep the last good files
-    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
     char name[64];
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
     io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
     pvd.add(t, std::string("particles/") + name);
     frame_times.push_back(t);
-    write_checkpoint();
+    save_progress();
     return true;
   };
   if (opt.restart) {
@@ -174,12 +176,8 @@ int run_dem(const Case& c, const RunOptions& opt) {
         return 3;
       }
       write_summary();
-    } else if (c.time.checkpoint_every_wall > 0 &&
-               std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= c.time.checkpoint_every_wall &&
-               solver.finite()) {
-      // Between outputs: the state and the gauge rows so far, no frame.
-      if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
-      write_checkpoint();
+    } else if (wall_checkpoints.due() && solver.finite()) {
+      save_progress(); // no frame
     }
     const auto now = Clock::now();
     if (!opt.quiet &&

@@ -1,5 +1,6 @@
 // Small helpers shared by the SPH and DEM run loops.
 #pragma once
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -49,5 +50,20 @@ inline std::string csv_text(const std::vector<std::string>& names, const std::ve
   }
   return s.str();
 }
+
+// When a checkpoint is due between outputs: every `every_s` seconds of wall time since
+// the last one written (time.checkpoint_every_wall; 0: never).
+class WallCheckpoints {
+public:
+  explicit WallCheckpoints(double every_s) : every_s_(every_s) {}
+  [[nodiscard]] bool due() const {
+    return every_s_ > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= every_s_;
+  }
+  void written() { last_ = std::chrono::steady_clock::now(); }
+
+private:
+  double every_s_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 } // namespace surge::sim

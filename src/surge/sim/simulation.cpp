@@ -235,7 +235,7 @@ int run(const Case& c, const RunOptions& opt) {
     rows.push_back(std::move(v));
   };
   double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
-  auto last_checkpoint = Clock::now();
+  WallCheckpoints wall_checkpoints(c.time.checkpoint_every_wall);
   auto write_checkpoint = [&] {
     io::Checkpoint k;
     k.time = t;
@@ -251,7 +251,15 @@ int run(const Case& c, const RunOptions& opt) {
     solver.download(k.particles, true);
     if (cp) k.dem_state = cp->dem->save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
-    last_checkpoint = Clock::now();
+    wall_checkpoints.written();
+  };
+  // The gauge rows so far, the checkpoint and the summary: with every output, and between
+  // outputs when a wall-clock checkpoint is due.
+  auto save_progress = [&] {
+    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
+    rows_written = rows.size();
+    write_checkpoint();
+    write_summary("running", 0, "");
   };
   auto write_output = [&] {
     solver.refresh();
@@ -266,11 +274,8 @@ int run(const Case& c, const RunOptions& opt) {
       spheres_pvd->add(t, std::string("particles/") + name);
     }
     frame_times.push_back(t);
-    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
-    rows_written = rows.size();
     ++frame;
-    write_checkpoint();
-    write_summary("running", 0, "");
+    save_progress();
     if (since_output.removed() > 0 && !opt.quiet)
       std::fprintf(stderr,
                    "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
@@ -373,13 +378,8 @@ int run(const Case& c, const RunOptions& opt) {
     if (t >= next_out - eps) {
       next_out += c.time.output_every; // before the checkpoint is written: a restart continues from here
       write_output();
-    } else if (c.time.checkpoint_every_wall > 0 &&
-               std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= c.time.checkpoint_every_wall) {
-      // Between outputs: the state, the gauge rows so far and the summary, no frame.
-      io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
-      rows_written = rows.size();
-      write_checkpoint();
-      write_summary("running", 0, "");
+    } else if (wall_checkpoints.due()) {
+      save_progress(); // no frame
     }
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_report).count();
