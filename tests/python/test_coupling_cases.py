@@ -122,6 +122,8 @@ r = run(["check", os.path.join(CASES, "water_entry.yaml")])
 check(r.returncode == 0 and "dp <= D/20" in r.stdout, "water entry at D/6 warns: loose spheres want D/20")
 r = run(["check", os.path.join(CASES, "water_entry.yaml"), "--set", "dp=0.00127"])
 check(r.returncode == 0 and "D/20" not in r.stdout, "water entry at D/20: no sphere resolution warning")
+r = run(["check", os.path.join(CASES, "floating.yaml"), "--set", "dp=0.003"])  # D = 0.06 is not exact in float
+check(r.returncode == 0 and "D/20" not in r.stdout, "floating sphere at D/20: no sphere resolution warning")
 r = run(["check", os.path.join(CASES, "slide_tsunami.yaml")])
 check(r.returncode == 0 and "dense assembly" in r.stdout and "D/6" in r.stdout, "slide at D/4 warns: dense wants D/6")
 check("spheres     522" in r.stdout, "slide: 522 spheres")

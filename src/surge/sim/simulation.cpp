@@ -147,11 +147,13 @@ int check(const Case& c) {
     double dmin = 1e300;
     for (const auto& x : sp) dmin = std::min(dmin, 2.0 * x.radius);
     const bool dense = touching_share(sp) >= 0.5;
-    const double ratio = c.dp / dmin;
-    if (dense && ratio > 1.0 / 6 + 1e-9)
+    // Radii are stored as Real (float by default): D = 0.06 comes back as 0.0599999987, so
+    // dp = D/20 exactly must pass; a relative margin of 1e-5 covers float rounding.
+    const double ratio = c.dp / dmin, slack = 1 + 1e-5;
+    if (dense && ratio > slack / 6)
       warn("dp = D/" + fmt(1 / ratio) +
            " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
-    else if (!dense && ratio > 1.0 / 20 + 1e-9)
+    else if (!dense && ratio > slack / 20)
       warn("dp = D/" + fmt(1 / ratio) +
            " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
            "and drag (gap effect)");
