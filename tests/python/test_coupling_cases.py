@@ -24,6 +24,10 @@ def run(args):
     return subprocess.run([SURGE] + args, capture_output=True, text=True)
 
 
+# The sphere of archimedes.yaml and floating.yaml: R = 0.03 m; rho g V of its volume of water.
+R_SPHERE = 0.03
+RHO_G_V = 1000.0 * 9.81 * 4.0 / 3.0 * math.pi * R_SPHERE**3
+
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 
@@ -39,8 +43,7 @@ r = run(["run", os.path.join(CASES, "archimedes.yaml"), "--out", out])
 check(r.returncode == 0, "archimedes D/6 runs (exit %d: %s)" % (r.returncode, r.stderr[-300:]))
 if r.returncode == 0:
     g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
-    R, dp, rho, grav = 0.03, 0.01, 1000.0, 9.81
-    fb = rho * grav * 4.0 / 3.0 * math.pi * R**3
+    R, dp, fb = R_SPHERE, 0.01, RHO_G_V
     m = (g["time"] >= 0.15) & (g["time"] <= 0.3 + 1e-9)
     fz, fx = g["fz"][m].mean(), g["fx"][m].mean()
     r_eff = R * (fz / fb) ** (1.0 / 3.0)
@@ -93,7 +96,7 @@ r = run(["run", os.path.join(CASES, "archimedes.yaml"), "--out", out, "--quiet",
 check(r.returncode == 0, "neutral sphere D/12 runs (%s)" % r.stderr[-300:])
 if r.returncode == 0:
     g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
-    D, weight = 0.06, 1000 * 9.81 * 4 / 3 * math.pi * 0.03**3
+    D, weight = 2 * R_SPHERE, RHO_G_V  # density 1000: its weight is the water's rho g V
     drift = np.abs(g["z"] - g["z"][0]).max()
     fz = g["fz"][g["time"] >= 0.2].mean()
     print("     largest drift %.2f mm = %.3f D; mean fluid force %.4f N, weight %.4f N" % (drift * 1e3, drift / D, fz,

@@ -238,7 +238,11 @@ int run(const Case& c, const RunOptions& opt) {
   };
   double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
   WallCheckpoints wall_checkpoints(c.time.checkpoint_every_wall);
-  auto write_checkpoint = [&] {
+  // The gauge rows so far, the checkpoint and the summary: with every output, and between
+  // outputs when a wall-clock checkpoint is due.
+  auto save_progress = [&] {
+    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
+    rows_written = rows.size();
     io::Checkpoint k;
     k.time = t;
     k.steps = solver.step_count();
@@ -254,13 +258,6 @@ int run(const Case& c, const RunOptions& opt) {
     if (cp) k.dem_state = cp->dem->save();
     io::write_checkpoint((out / "checkpoint.bin").string(), k);
     wall_checkpoints.written();
-  };
-  // The gauge rows so far, the checkpoint and the summary: with every output, and between
-  // outputs when a wall-clock checkpoint is due.
-  auto save_progress = [&] {
-    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
-    rows_written = rows.size();
-    write_checkpoint();
     write_summary("running", 0, "");
   };
   auto write_output = [&] {
