@@ -37,8 +37,10 @@ int main(int argc, char** argv) {
   grid.set_spec(neighbour::make_grid({0, 0, 0}, {L, L, L}, r));
   const auto t0 = std::chrono::steady_clock::now();
   store.sort(grid);
+  par::synchronize();
   const auto t1 = std::chrono::steady_clock::now();
   store.sort(grid); // already sorted: the per-step cost in a running simulation
+  par::synchronize();
   const auto t2 = std::chrono::steady_clock::now();
   auto v = store.view();
   const auto g = grid.view(v.pos);
@@ -49,9 +51,10 @@ int main(int argc, char** argv) {
         neighbour::for_each_neighbour(g, v.pos[i], r * r, [&](int, const Vec3&, Real) { ++count; });
         out[i] = static_cast<Real>(count);
       });
+  par::synchronize();
   const auto t3 = std::chrono::steady_clock::now();
-  double pairs = 0;
-  for (int i = 0; i < v.n; ++i) pairs += static_cast<double>(out[i]);
+  const double pairs = par::parallel_reduce(
+      v.n, 0.0, SURGE_LAMBDA(int i) { return static_cast<double>(out[i]); }, par::Sum{});
   auto s = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   std::printf("{\"particles\": %d, \"threads\": %d, \"sort_shuffled_s\": %.4f, \"sort_sorted_s\": %.4f, "
               "\"neighbour_pass_s\": %.4f, \"neighbours_per_particle\": %.1f, \"particles_per_s_search\": %.4g}\n",

@@ -33,14 +33,10 @@ Pairs grid_search(const std::vector<Vec3>& pos, Real r, const Vec3& lo, const Ve
   neighbour::UniformGrid grid;
   grid.set_spec(neighbour::make_grid(lo, hi, r, span));
   EXPECT_EQ(store.sort(grid), 0);
-  auto v = store.view();
-  const auto g = grid.view(v.pos);
-  Pairs out(pos.size());
-  // Host-side walk over the sorted arrays (the CPU build's buffers are host memory).
-  for (int i = 0; i < v.n; ++i)
-    neighbour::for_each_neighbour(g, v.pos[i], r * r,
-                                  [&](int j, const Vec3&, Real) { out[v.id[i]].push_back(v.id[j]); });
-  for (auto& l : out) std::sort(l.begin(), l.end());
+  const auto v = store.view();
+  // Walked in the execution space and downloaded: device memory is not the host's.
+  Pairs out = test::neighbour_ids(grid.view(v.pos), v, r);
+  out.resize(pos.size());
   return out;
 }
 

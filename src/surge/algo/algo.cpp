@@ -1,35 +1,64 @@
 #include "surge/algo/algo.hpp"
 
+#include <bit>
+
+#if defined(SURGE_BACKEND_CUDA)
+#include <cub/device/device_radix_sort.cuh>
+#else
 #include <thrust/execution_policy.h>
-#include <thrust/scan.h>
-#include <thrust/sequence.h>
 #include <thrust/sort.h>
+#endif
 
 namespace surge::algo {
 
-void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n) {
+#if defined(SURGE_BACKEND_CUDA)
+namespace {
+// Scratch of the radix sort, grown to the largest sort seen and kept.
+struct SortScratch {
+  par::Buffer<std::uint32_t> keys, values;
+  par::Buffer<unsigned char> temp;
+};
+SortScratch& scratch() {
+  static auto* s = new SortScratch; // never freed: device memory goes with the process
+  return *s;
+}
+} // namespace
+
+void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t max_key) {
   if (n <= 1) return;
+  SortScratch& s = scratch();
+  const auto un = static_cast<std::size_t>(n);
+  if (s.keys.size() < un) {
+    s.keys.resize(un);
+    s.values.resize(un);
+  }
+  const int end_bit = std::max(1, static_cast<int>(std::bit_width(max_key)));
+  // Double buffers: CUB ping-pongs between the caller's arrays and the scratch, so its
+  // temporary storage stays small (no third copy of keys and values).
+  cub::DoubleBuffer<std::uint32_t> k(keys, s.keys.data()), v(values, s.values.data());
+  std::size_t temp_bytes = 0;
+  par::check_cuda(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, k, v, n, 0, end_bit), "radix sort size");
+  if (s.temp.size() < temp_bytes) s.temp.resize(temp_bytes);
+  par::check_cuda(cub::DeviceRadixSort::SortPairs(s.temp.data(), temp_bytes, k, v, n, 0, end_bit), "radix sort");
+  // The callers own their arrays: copy back when the result ended in the scratch.
+  if (k.Current() != keys)
+    par::check_cuda(cudaMemcpyAsync(keys, k.Current(), un * sizeof(std::uint32_t), cudaMemcpyDeviceToDevice),
+                    "radix sort copy");
+  if (v.Current() != values)
+    par::check_cuda(cudaMemcpyAsync(values, v.Current(), un * sizeof(std::uint32_t), cudaMemcpyDeviceToDevice),
+                    "radix sort copy");
+}
+#else
+void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t /*max_key*/) {
+  if (n <= 1) return;
+  const par::devcheck::Open access;
   thrust::stable_sort_by_key(thrust::device, keys, keys + n, values);
 }
+#endif
 
 void iota(std::uint32_t* values, int n) {
-  if (n <= 0) return;
-  thrust::sequence(thrust::device, values, values + n, 0U);
-}
-
-std::uint64_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, int n) {
-  if (n <= 0) return 0;
-  std::uint32_t last_in = 0;
-  std::uint32_t last_out = 0;
-  thrust::exclusive_scan(thrust::device, in, in + n, out, 0U);
-#if defined(SURGE_BACKEND_CUDA)
-  par::check_cuda(cudaMemcpy(&last_in, in + n - 1, sizeof(last_in), cudaMemcpyDeviceToHost), "scan");
-  par::check_cuda(cudaMemcpy(&last_out, out + n - 1, sizeof(last_out), cudaMemcpyDeviceToHost), "scan");
-#else
-  last_in = in[n - 1];
-  last_out = out[n - 1];
-#endif
-  return static_cast<std::uint64_t>(last_in) + last_out;
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) { values[i] = static_cast<std::uint32_t>(i); });
 }
 
 } // namespace surge::algo

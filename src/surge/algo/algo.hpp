@@ -1,5 +1,5 @@
-// Sorting and scans: the only place Thrust/CUB appear. Implemented in algo.cpp,
-// compiled with the OpenMP backend on the CPU build and with nvcc under CUDA.
+// Sorting: the only place Thrust/CUB appear. Implemented in algo.cpp, compiled with
+// Thrust's OpenMP backend on the CPU build and as CUB's radix sort under nvcc.
 #pragma once
 #include "surge/par/parallel.hpp"
 
@@ -7,11 +7,11 @@
 
 namespace surge::algo {
 
-// Stable sort of keys[0,n) carrying values along.
-void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n);
+// Stable sort of keys[0,n) carrying values along; every key is <= max_key (the GPU
+// sort only looks at the bits max_key needs). The GPU path keeps its scratch between
+// calls: no allocation once the particle count has been reached.
+void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t max_key);
 // values[i] = i
 void iota(std::uint32_t* values, int n);
-// out[i] = sum of in[0..i) ; returns the total.
-std::uint64_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, int n);
 
 } // namespace surge::algo

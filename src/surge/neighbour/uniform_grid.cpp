@@ -41,7 +41,7 @@ void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
         keys[i] = c >= 2 ? sentinel : 2 * s.key(pos[i]) + c;
       });
   algo::iota(perm_.data(), n);
-  algo::sort_by_key(keys, perm_.data(), n);
+  algo::sort_by_key(keys, perm_.data(), n, sentinel);
 }
 
 int UniformGrid::build_cell_start(int n) {
@@ -64,12 +64,9 @@ int UniformGrid::build_cell_start(int n) {
           for (std::uint32_t c = k + 1; c <= ncell; ++c) start[c] = static_cast<std::uint32_t>(n);
         }
       });
-  std::vector<std::uint32_t> live(1);
-#if defined(SURGE_BACKEND_CUDA)
-  par::check_cuda(cudaMemcpy(live.data(), start + ncell, sizeof(std::uint32_t), cudaMemcpyDeviceToHost), "cell_start");
-#else
-  live[0] = start[ncell];
-#endif
+  // The live count sizes the host's loops: one 4-byte copy back.
+  std::vector<std::uint32_t> live;
+  par::download_range(live, cell_start_, ncell, 1);
   return static_cast<int>(live[0]);
 }
 

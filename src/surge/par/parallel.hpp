@@ -3,7 +3,9 @@
 // written with SURGE_LAMBDA and see only plain views (pointers and sizes).
 #pragma once
 #include "surge/core/types.hpp"
+#include "surge/par/devcheck.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -11,10 +13,12 @@
 
 #if defined(SURGE_BACKEND_CUDA)
 #include <cuda_runtime.h>
-#include <thrust/execution_policy.h>
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/transform_reduce.h>
-#define SURGE_LAMBDA [=] __host__ __device__
+// Device-only lambdas: nvcc wraps a [=] __host__ __device__ lambda in a type-erased
+// holder whose host function pointer can be null when it is copied into a launch (the
+// segfault of the first GPU run). Loop bodies run only in kernels, so they need no host
+// side; the one consequence is that host code may not ask for their result type, which
+// is why parallel_reduce takes the type from its init value.
+#define SURGE_LAMBDA [=] __device__
 #else
 #include <omp.h>
 #define SURGE_LAMBDA [=]
@@ -31,7 +35,42 @@ __global__ void for_kernel(int n, F f) {
   const int i = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   if (i < n) f(i);
 }
+
+inline constexpr int reduce_block = 256;
+inline constexpr int reduce_max_blocks = 1024;
+
+// One block's op-reduction of f(i) over a grid-stride range, into partial[block]. The tree
+// has a fixed shape, so a reduction gives the same bits on every run (no atomics).
+template <class T, class F, class Op>
+__global__ void reduce_kernel(int n, T init, F f, Op op, T* partial) {
+  __shared__ alignas(16) unsigned char raw[reduce_block * sizeof(T)];
+  T* s = reinterpret_cast<T*>(raw);
+  T acc = init;
+  for (int i = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x); i < n;
+       i += static_cast<int>(gridDim.x * blockDim.x))
+    acc = op(acc, f(i));
+  s[threadIdx.x] = acc;
+  __syncthreads();
+  for (unsigned w = reduce_block / 2; w > 0; w /= 2) {
+    if (threadIdx.x < w) s[threadIdx.x] = op(s[threadIdx.x], s[threadIdx.x + w]);
+    __syncthreads();
+  }
+  if (threadIdx.x == 0) partial[blockIdx.x] = s[0];
+}
+
+template <class T>
+struct ReadPartial {
+  const T* p;
+  __device__ T operator()(int i) const { return p[i]; }
+};
 #endif
+
+// Waits for every launched loop to finish (timing; the CPU build's loops are synchronous).
+inline void synchronize() {
+#if defined(SURGE_BACKEND_CUDA)
+  check_cuda(cudaDeviceSynchronize(), "synchronize");
+#endif
+}
 
 inline const char* backend_name() {
 #if defined(SURGE_BACKEND_CUDA)
@@ -66,6 +105,7 @@ void parallel_for(int n, F f) {
   for_kernel<<<(n + block - 1) / block, block>>>(n, f);
   check_cuda(cudaGetLastError(), "kernel launch");
 #else
+  const devcheck::Open access;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) f(i);
 #endif
@@ -82,20 +122,36 @@ void parallel_for_uneven(int n, F f) {
   parallel_for(n, f);
 #else
   if (n <= 0) return;
+  const devcheck::Open access;
 #pragma omp parallel for schedule(dynamic, 256)
   for (int i = 0; i < n; ++i) f(i);
 #endif
 }
 
-// op-reduction of f(i) over [0, n). op must be associative and commutative;
-// for floating-point sums the rounding depends on the thread count.
+// op-reduction of f(i) over [0, n), returned to the host (the one host synchronisation a
+// reduction costs on the GPU). op must be associative and commutative; for floating-point
+// sums the rounding depends on the thread count. T is the type of init (f's result is
+// converted to it): nvcc does not let host code ask a device lambda for its result type.
 template <class T, class F, class Op>
 T parallel_reduce(int n, T init, F f, Op op) {
   if (n <= 0) return init;
 #if defined(SURGE_BACKEND_CUDA)
-  return thrust::transform_reduce(thrust::device, thrust::counting_iterator<int>(0), thrust::counting_iterator<int>(n),
-                                  f, init, op);
+  // Partials and the host result live as long as the program: no allocation per call.
+  static T* partial = nullptr;
+  static T* result = nullptr;
+  if (!partial) {
+    check_cuda(cudaMalloc(reinterpret_cast<void**>(&partial), (reduce_max_blocks + 1) * sizeof(T)), "cudaMalloc");
+    check_cuda(cudaMallocHost(reinterpret_cast<void**>(&result), sizeof(T)), "cudaMallocHost");
+  }
+  const int blocks = std::min(reduce_max_blocks, (n + reduce_block - 1) / reduce_block);
+  reduce_kernel<<<blocks, reduce_block>>>(n, init, f, op, partial);
+  check_cuda(cudaGetLastError(), "reduction launch");
+  reduce_kernel<<<1, reduce_block>>>(blocks, init, ReadPartial<T>{partial}, op, partial + blocks);
+  check_cuda(cudaGetLastError(), "reduction launch");
+  check_cuda(cudaMemcpy(result, partial + blocks, sizeof(T), cudaMemcpyDeviceToHost), "reduction result");
+  return *result;
 #else
+  const devcheck::Open access;
   T result = init;
 #pragma omp parallel
   {
@@ -160,6 +216,8 @@ public:
       release();
 #if defined(SURGE_BACKEND_CUDA)
       check_cuda(cudaMalloc(reinterpret_cast<void**>(&ptr_), n * sizeof(T)), "cudaMalloc");
+#elif defined(SURGE_DEVCHECK)
+      ptr_ = static_cast<T*>(devcheck::allocate(n * sizeof(T)));
 #else
       ptr_ = static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64}));
 #endif
@@ -187,6 +245,8 @@ private:
     if (!ptr_) return;
 #if defined(SURGE_BACKEND_CUDA)
     cudaFree(ptr_);
+#elif defined(SURGE_DEVCHECK)
+    devcheck::release(ptr_, cap_ * sizeof(T));
 #else
     ::operator delete (ptr_, std::align_val_t{64});
 #endif
@@ -206,18 +266,25 @@ void upload(Buffer<T>& dst, const std::vector<T>& src) {
 #if defined(SURGE_BACKEND_CUDA)
   check_cuda(cudaMemcpy(dst.data(), src.data(), src.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
 #else
+  const devcheck::Open access;
   std::copy(src.begin(), src.end(), dst.data());
+#endif
+}
+// dst <- src[offset, offset + n)
+template <class T>
+void download_range(std::vector<T>& dst, const Buffer<T>& src, std::size_t offset, std::size_t n) {
+  dst.resize(n);
+  if (n == 0) return;
+#if defined(SURGE_BACKEND_CUDA)
+  check_cuda(cudaMemcpy(dst.data(), src.data() + offset, n * sizeof(T), cudaMemcpyDeviceToHost), "download");
+#else
+  const devcheck::Open access;
+  std::copy(src.data() + offset, src.data() + offset + n, dst.data());
 #endif
 }
 template <class T>
 void download(std::vector<T>& dst, const Buffer<T>& src, std::size_t n) {
-  dst.resize(n);
-  if (n == 0) return;
-#if defined(SURGE_BACKEND_CUDA)
-  check_cuda(cudaMemcpy(dst.data(), src.data(), n * sizeof(T), cudaMemcpyDeviceToHost), "download");
-#else
-  std::copy(src.data(), src.data() + n, dst.data());
-#endif
+  download_range(dst, src, 0, n);
 }
 template <class T>
 std::vector<T> download(const Buffer<T>& src) {
