@@ -3,6 +3,7 @@
 // N loose spheres (r = 15 mm, D = 3 dp, 14 body particles each) on a lattice clear of
 // each other; the water inside the spheres is removed.
 // usage: bench_coupling N_SPHERES STEPS THREADS
+#include "phase_report.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/sim/dem_setup.hpp"
 
@@ -59,23 +60,21 @@ int main(int argc, char** argv) {
   if (c.coupled()) cp = std::make_unique<sim::CoupledParts>(c, init);
   sph::WcsphSolver solver(c, init);
   const std::size_t n_all = init.particles.size();
-  auto one_step = [&](double& t_couple) {
+  auto one_step = [&] {
     const auto s = solver.step(1.0);
-    const auto t0 = std::chrono::steady_clock::now();
     if (cp) cp->coupling->after_fluid_step(solver, *cp->dem, s.dt);
-    t_couple += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  double t_couple = 0;
-  one_step(t_couple); // warm-up
-  t_couple = 0;
+  one_step(); // warm-up
   const auto t0 = std::chrono::steady_clock::now();
-  for (long k = 0; k < steps; ++k) one_step(t_couple);
+  for (long k = 0; k < steps; ++k) one_step();
+  par::synchronize();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string phases = bench::phase_breakdown(std::max(1L, steps / 4), one_step);
   std::printf("{\"bench\": \"coupling\", \"threads\": %d, \"spheres\": %ld, \"body\": %zu, \"fluid\": %zu, "
-              "\"particles\": %zu, \"steps\": %ld, \"seconds_per_step\": %.4g, \"coupling_share\": %.3f, "
-              "\"particle_steps_per_s\": %.4g}\n",
+              "\"particles\": %zu, \"steps\": %ld, \"seconds_per_step\": %.4g, "
+              "\"particle_steps_per_s\": %.4g, \"backend\": \"%s\", \"phases_ms_share\": %s}\n",
               par::threads(), n_spheres, cp ? cp->coupling->n_body() : 0, init.n_fluid, n_all, steps,
-              wall / static_cast<double>(steps), t_couple / wall,
-              static_cast<double>(n_all) * static_cast<double>(steps) / wall);
+              wall / static_cast<double>(steps), static_cast<double>(n_all) * static_cast<double>(steps) / wall,
+              par::backend_name(), phases.c_str());
   return 0;
 }

@@ -3,6 +3,7 @@
 // (shear history, rolling and twisting resistance, bonds enabled and intact).
 // Reports sphere-steps per second, contacts per sphere, ns per contact per core and
 // bytes per sphere.   usage: bench_dem N_SPHERES STEPS THREADS
+#include "phase_report.hpp"
 #include "surge/dem/dem_solver.hpp"
 
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string>
 #include <sys/resource.h>
 
 using namespace surge;
@@ -49,7 +51,9 @@ int main(int argc, char** argv) {
   s.step(dt);
   const auto t0 = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) s.step(dt);
+  par::synchronize();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string phases = bench::phase_breakdown(std::max(1L, steps / 4), [&] { s.step(dt); });
   double contacts = 0;
   for (auto c : s.contact_counts()) contacts += c;
   rusage u{};
@@ -58,9 +62,9 @@ int main(int argc, char** argv) {
   const double sps = n * static_cast<double>(steps) / wall;
   std::printf("{\"spheres\": %zu, \"threads\": %d, \"steps\": %ld, \"bonds\": %ld, \"sphere_steps_per_s\": %.4g, "
               "\"contacts_per_sphere\": %.2f, \"ns_per_contact_per_core\": %.1f, \"bytes_per_sphere\": %.0f, "
-              "\"sort_share\": %.3f, \"seconds\": %.2f}\n",
+              "\"seconds\": %.2f, \"backend\": \"%s\", \"phases_ms_share\": %s}\n",
               sp.size(), par::threads(), steps, bonds, sps, contacts / n,
               1e9 * wall * par::threads() / (static_cast<double>(steps) * contacts),
-              static_cast<double>(u.ru_maxrss) * 1024.0 / n, s.time_sort / s.time_total, wall);
+              static_cast<double>(u.ru_maxrss) * 1024.0 / n, wall, par::backend_name(), phases.c_str());
   return 0;
 }

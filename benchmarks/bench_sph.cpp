@@ -1,7 +1,8 @@
 // SPH throughput: runs a case for a fixed number of steps and reports fluid and
-// all-particle steps per second, the share of time in neighbour search + sorting,
-// and bytes per particle (solver buffers, and peak RSS / particles).
+// all-particle steps per second, bytes per particle (solver buffers, and peak RSS /
+// particles), then the time per phase (ms per step, share) from a shorter profiled run.
 // usage: bench_sph CASE STEPS THREADS [--set KEY=VALUE]...
+#include "phase_report.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <string>
 #include <sys/resource.h>
 
 int main(int argc, char** argv) {
@@ -30,20 +32,22 @@ int main(int argc, char** argv) {
     solver = std::make_unique<surge::sph::WcsphSolver>(c, init);
   }
   solver->step(1.0); // warm-up: first sort of an unsorted set, page faults
-  solver->time_sort = solver->time_total = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) solver->step(1.0);
+  surge::par::synchronize();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string phases = surge::bench::phase_breakdown(std::max(1L, steps / 4), [&] { solver->step(1.0); });
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   const double rss = static_cast<double>(u.ru_maxrss) * 1024.0;
   std::printf("{\"case\": \"%s\", \"threads\": %d, \"steps\": %ld, \"fluid\": %zu, \"particles\": %zu, "
-              "\"fluid_steps_per_s\": %.4g, \"particle_steps_per_s\": %.4g, \"sort_share\": %.3f, "
-              "\"solver_bytes_per_particle\": %.1f, \"rss_bytes_per_particle\": %.1f, \"seconds\": %.3f}\n",
+              "\"fluid_steps_per_s\": %.4g, \"particle_steps_per_s\": %.4g, "
+              "\"solver_bytes_per_particle\": %.1f, \"rss_bytes_per_particle\": %.1f, \"seconds\": %.3f, \"backend\": "
+              "\"%s\", \"phases_ms_share\": %s}\n",
               c.name.c_str(), surge::par::threads(), steps, n_fluid, n_all,
               static_cast<double>(n_fluid) * static_cast<double>(steps) / wall,
-              static_cast<double>(n_all) * static_cast<double>(steps) / wall, solver->time_sort / solver->time_total,
-              static_cast<double>(solver->bytes()) / static_cast<double>(n_all), rss / static_cast<double>(n_all),
-              wall);
+              static_cast<double>(n_all) * static_cast<double>(steps) / wall,
+              static_cast<double>(solver->bytes()) / static_cast<double>(n_all), rss / static_cast<double>(n_all), wall,
+              surge::par::backend_name(), phases.c_str());
   return 0;
 }

@@ -81,7 +81,7 @@ def surge_front(positions, dp, spray_fraction=0.0005):
 
 
 def read_front_data(path):
-    """Columns T, Z of a surge-front file in ../shared/data (comment lines start with #)."""
+    """Columns T, Z of a surge-front file in data/ (comment lines start with #)."""
     rows = []
     with open(path) as f:
         for line in f:

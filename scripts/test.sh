@@ -1,8 +1,15 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds the CPU preset with warnings as errors and runs the tests.
+# Installs what is missing, builds the CPU preset with warnings as errors and runs the quick
+# tests (every unit test and the end-to-end CLI test; a few minutes on 2 cores). The long
+# validation tests (dam-break front against Koshizuka & Oka, the coupled cases) carry the
+# ctest label "validation": `ctest --preset cpu-ci -L validation`, or scripts/test.sh --all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 cmake --preset cpu-ci
 cmake --build --preset cpu-ci -j"$(nproc)"
-ctest --preset cpu-ci -j1
+if [ "${1:-}" = "--all" ]; then
+  ctest --preset cpu-ci -j1
+else
+  ctest --preset cpu-ci -j1 -LE validation
+fi

@@ -2,7 +2,7 @@
 measured fronts of Koshizuka & Oka and Martin & Moyce. Writes a PNG and prints a
 Markdown table of errors.
 
-usage: validate_dambreak.py RUN_DIR [RUN_DIR ...] --png OUT.png [--data ../shared/data]
+usage: validate_dambreak.py RUN_DIR [RUN_DIR ...] --png OUT.png [--data data]
 Run first, e.g.: surge run cases/dambreak_koshizuka.yaml --set time.end=0.4 --set time.output_every=0.01
 """
 import argparse
@@ -21,7 +21,7 @@ import surge_post  # noqa: E402
 ap = argparse.ArgumentParser()
 ap.add_argument("runs", nargs="+")
 ap.add_argument("--png", required=True)
-ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data"))
+ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "data"))
 ap.add_argument("--a", type=float, default=0.146, help="initial column width [m]")
 ap.add_argument("--tank", type=float, default=0.584, help="tank length [m]")
 args = ap.parse_args()

@@ -1,11 +1,11 @@
 """SPHERIC test 2 (Kleefsman et al. 2005): gauges H1-H4 and P1-P8 of a finished run
 against the MARIN measurements. The file's H1 and H3 labels are swapped (see
-../shared/data/README.md): its "H1" column is the gauge at x = 1.488 m (our H3) and
+data/README.md): its "H1" column is the gauge at x = 1.488 m (our H3) and
 its "H3" column the gauge at x = 0.496 m (our H1). Writes a PNG and prints a
 Markdown table: normalised RMS over the common time range (at most 0-6 s), arrival
 time and peak errors.
 
-usage: validate_spheric.py RUN_DIR --png OUT.png [--data ../shared/data]
+usage: validate_spheric.py RUN_DIR --png OUT.png [--data data]
 """
 import argparse
 import os
@@ -23,7 +23,7 @@ import surge_post  # noqa: E402
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
 ap.add_argument("--png", required=True)
-ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data"))
+ap.add_argument("--data", default=os.path.join(os.path.dirname(__file__), "..", "data"))
 ap.add_argument("--tmax", type=float, default=6.0)
 args = ap.parse_args()
 

@@ -119,3 +119,11 @@ TEST(CaseReader, UnknownGaugeType) {
   expect_error(test::tank_case(0.01) + "gauges:\n  - {name: G, type: speed, at: [0.1, 0.05, 0.05]}\n", 8,
                "gauges.0.type", "unknown gauge type");
 }
+
+// A key given twice is an error naming both lines, at the top level and inside lists.
+TEST(CaseReader, KeyGivenTwice) {
+  // tank_case puts dp on line 2; the repeated dp is line 7.
+  expect_error(test::tank_case(0.01) + "dp: 0.02\n", 7, "dp", "given twice, on line 2 and on line 7");
+  expect_error(test::tank_case(0.01) + "gauges:\n  - {name: a, type: height, x: 0.1, y: 0.05, x: 0.2}\n", 8,
+               "gauges.0.x", "given twice");
+}

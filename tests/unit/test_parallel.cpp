@@ -31,6 +31,31 @@ std::vector<int> squares_mod(int n) {
   return par::download(b);
 }
 
+// Loop bodies live in free functions: nvcc's device lambdas may not sit in a test body
+// (a private member function).
+long long sum_of_indices(int n, long long init = 0) {
+  return par::parallel_reduce(
+      n, init, SURGE_LAMBDA(int i) { return static_cast<long long>(i); }, par::Sum{});
+}
+Real min_of_shuffled(int n) {
+  return par::parallel_reduce(
+      n, Real(1e30), SURGE_LAMBDA(int i) { return static_cast<Real>((i * 37) % n + 3); }, par::Min{});
+}
+Interval hull_of(int n) {
+  return par::parallel_reduce(
+      n, Interval{1 << 30, -(1 << 30)},
+      SURGE_LAMBDA(int i) {
+        return Interval{i - 5, i + 5};
+      },
+      Hull{});
+}
+#if defined(SURGE_DEVCHECK)
+int sum_buffer(const int* p, int n) {
+  return par::parallel_reduce(
+      n, 0, SURGE_LAMBDA(int i) { return p[i]; }, par::Sum{});
+}
+#endif
+
 } // namespace
 
 TEST(Parallel, LoopWritesEveryIndexOnce) {
@@ -43,24 +68,13 @@ TEST(Parallel, LoopWritesEveryIndexOnce) {
 TEST(Parallel, ReductionsMatchTheirClosedForms) {
   // Sizes below, at and far above one block, and above the cap on blocks (grid stride).
   for (int n : {1, 7, 256, 1000, 300000, 1 << 21}) {
-    const long long sum = par::parallel_reduce(
-        n, 0LL, SURGE_LAMBDA(int i) { return static_cast<long long>(i); }, par::Sum{});
-    EXPECT_EQ(sum, static_cast<long long>(n) * (n - 1) / 2) << "n " << n;
-    const Real mn = par::parallel_reduce(
-        n, Real(1e30), SURGE_LAMBDA(int i) { return static_cast<Real>((i * 37) % n + 3); }, par::Min{});
-    EXPECT_EQ(mn, Real(3)) << "n " << n;
-    const Interval hull = par::parallel_reduce(
-        n, Interval{1 << 30, -(1 << 30)},
-        SURGE_LAMBDA(int i) {
-          return Interval{i - 5, i + 5};
-        },
-        Hull{});
+    EXPECT_EQ(sum_of_indices(n), static_cast<long long>(n) * (n - 1) / 2) << "n " << n;
+    EXPECT_EQ(min_of_shuffled(n), Real(3)) << "n " << n;
+    const Interval hull = hull_of(n);
     EXPECT_EQ(hull.lo, -5);
     EXPECT_EQ(hull.hi, n + 4);
   }
-  EXPECT_EQ(par::parallel_reduce(
-                0, 42LL, SURGE_LAMBDA(int i) { return static_cast<long long>(i); }, par::Sum{}),
-            42);
+  EXPECT_EQ(sum_of_indices(0, 42), 42);
 }
 
 TEST(Parallel, SortIsStableAndMatchesStdStableSort) {
@@ -115,8 +129,8 @@ TEST(DevcheckDeathTest, HostReadOfABufferDiesWithAMessage) {
   int* w = b.data();
   EXPECT_DEATH({ w[0] = 1; }, "surge devcheck");
   EXPECT_EQ(par::download(b)[3], 5);
-  EXPECT_EQ(par::parallel_reduce(
-                100, 0, SURGE_LAMBDA(int i) { return p[i]; }, par::Sum{}),
+  EXPECT_EQ(sum_buffer(p, 100), 500);
+}, par::Sum{}),
             500);
 }
 #endif

@@ -65,6 +65,7 @@ void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
 }
 
 void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
+  const auto t = par::timed(par::Phase::Coupling);
   const auto p = sph.view();
   detail::index_bodies(p, first_id_, slot_.data());
   dem.rigid_states(state_);
@@ -74,6 +75,7 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
 }
 
 void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {
+  const auto t = par::timed(par::Phase::Coupling);
   dem.rigid_states(state_);
   detail::place(sph.view(), first_id_, offset_.data(), owner_.data(), state_.data());
   sph.invalidate();

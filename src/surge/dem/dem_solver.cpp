@@ -3,7 +3,6 @@
 #include "surge/geometry/closest_point.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -497,17 +496,21 @@ void DemSolver::sort_spheres() {
 }
 
 void DemSolver::step(Real dt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  sort_spheres();
-  const auto t1 = std::chrono::steady_clock::now();
+  {
+    const auto t = par::timed(par::Phase::DemSort);
+    sort_spheres();
+  }
   const DemView v = view();
-  detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_,
-                   reach(), dt);
-  detail::integrate(v, gravity_, local_damping_, dt);
+  {
+    const auto t = par::timed(par::Phase::DemContacts);
+    detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, triangles_.data(),
+                     n_triangles_, reach(), dt);
+  }
+  {
+    const auto t = par::timed(par::Phase::DemIntegrate);
+    detail::integrate(v, gravity_, local_damping_, dt);
+  }
   hist_old_.swap(hist_new_);
-  const auto t2 = std::chrono::steady_clock::now();
-  time_sort += std::chrono::duration<double>(t1 - t0).count();
-  time_total += std::chrono::duration<double>(t2 - t0).count();
 }
 
 namespace {

@@ -11,6 +11,7 @@
 #include "surge/dem/contact_linear_spring.hpp"
 #include "surge/dem/rigid_state.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
+#include "surge/par/phase_timer.hpp"
 
 #include <cstdint>
 #include <string>
@@ -136,7 +137,6 @@ public:
   DemView view();
 
   // Timing of the steps so far, seconds: sort (neighbour search + reordering), everything.
-  double time_sort = 0, time_total = 0;
 
 private:
   template <class Self, class F>

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -483,7 +484,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < gauges.size(); ++i) {
       const std::string path = "gauges." + std::to_string(i);
       const YAML::Node g = gauges[i];
-      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere", "about"});
+      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere", "about", "surface"});
       GaugeSpec gs;
       gs.line = g.Mark().line + 1;
       gs.name = r.require<std::string>(g, path, "name");
@@ -495,6 +496,10 @@ Case parse(const YAML::Node& root, Reader& r) {
         gs.type = GaugeType::Height;
         gs.x = r.require<double>(g, path, "x");
         gs.y = r.require<double>(g, path, "y");
+        const auto surface = r.get<std::string>(g, path, "surface", "column");
+        if (surface != "column" && surface != "highest")
+          r.fail(g["surface"], path + ".surface", "must be column (top of the water standing on the bed) or highest");
+        gs.surface_highest = surface == "highest";
         if (!c.domain.contains({gs.x, gs.y, c.domain.min.z})) r.fail(g, path, "height gauge lies outside the domain");
       } else if (type == "pressure" || type == "velocity") {
         gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
@@ -586,6 +591,28 @@ Case parse(const YAML::Node& root, Reader& r) {
   return c;
 }
 
+// yaml-cpp keeps both entries of a key given twice and lookups find the first, so a
+// case with `dp: 0.01` and further down `dp: 0.02` would silently run at 0.01.
+void reject_duplicate_keys(const YAML::Node& n, const std::string& file, const std::string& path) {
+  if (n.IsMap()) {
+    std::map<std::string, int> seen; // key -> line
+    for (const auto& kv : n) {
+      const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
+      const int line = kv.first.Mark().is_null() ? 0 : kv.first.Mark().line + 1;
+      const std::string full = path.empty() ? key : path + "." + key;
+      const auto [it, fresh] = seen.emplace(key, line);
+      if (!fresh)
+        throw InputError(file, line, full,
+                         "given twice, on line " + std::to_string(it->second) + " and on line " + std::to_string(line) +
+                             "; keep one");
+      reject_duplicate_keys(kv.second, file, full);
+    }
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      reject_duplicate_keys(n[i], file, (path.empty() ? "" : path + ".") + std::to_string(i));
+  }
+}
+
 } // namespace
 
 Case read_case_text(const std::string& text, const std::string& filename, const Overrides& overrides) {
@@ -597,6 +624,7 @@ Case read_case_text(const std::string& text, const std::string& filename, const 
     throw InputError(filename, e.mark.is_null() ? 0 : e.mark.line + 1, "", "malformed YAML: " + e.msg);
   } catch (const YAML::Exception& e) { throw InputError(filename, 0, "", std::string("malformed YAML: ") + e.what()); }
   if (!root.IsDefined() || root.IsNull()) throw InputError(filename, 0, "", "the case file is empty");
+  reject_duplicate_keys(root, filename, "");
   for (const auto& o : overrides) apply_override(root, o, r);
   try {
     Case c = parse(root, r);
@@ -681,7 +709,7 @@ std::string to_yaml(const Case& c) {
     switch (g.type) {
     case GaugeType::Height:
       e << YAML::Key << "type" << YAML::Value << "height" << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y"
-        << YAML::Value << g.y;
+        << YAML::Value << g.y << YAML::Key << "surface" << YAML::Value << (g.surface_highest ? "highest" : "column");
       break;
     case GaugeType::Pressure:
     case GaugeType::Velocity:

@@ -44,14 +44,14 @@ void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
   algo::sort_by_key(keys, perm_.data(), n, sentinel);
 }
 
-int UniformGrid::build_cell_start(int n) {
+void UniformGrid::build_cell_start(int n) {
   const std::uint32_t ncell = 2 * spec_.cells(); // (cell, class) slots
   cell_start_.resize(static_cast<std::size_t>(ncell) + 1);
   std::uint32_t* start = cell_start_.data();
   const std::uint32_t* keys = keys_.data();
   if (n == 0) {
     par::fill(cell_start_, 0U);
-    return 0;
+    return;
   }
   // Every cell c gets the first index whose key is >= c; each entry is written once:
   // by the particle where the key jumps past it, or by the tail loop.
@@ -64,9 +64,11 @@ int UniformGrid::build_cell_start(int n) {
           for (std::uint32_t c = k + 1; c <= ncell; ++c) start[c] = static_cast<std::uint32_t>(n);
         }
       });
-  // The live count sizes the host's loops: one 4-byte copy back.
+}
+
+int UniformGrid::live_count() const {
   std::vector<std::uint32_t> live;
-  par::download_range(live, cell_start_, ncell, 1);
+  par::download_range(live, cell_start_, cell_start_.size() - 1, 1);
   return static_cast<int>(live[0]);
 }
 

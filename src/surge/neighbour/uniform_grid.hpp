@@ -94,8 +94,11 @@ public:
   // cls[i] == 2 (dead), then stable sort. permutation()[i] is the old index of new i.
   // cls may be null (all class 0).
   void sort(const Vec3* pos, const std::uint8_t* cls, int n);
-  // Builds cell_start from the sorted keys; returns the number of live particles.
-  int build_cell_start(int n);
+  // Builds cell_start from the sorted keys (no host synchronisation).
+  void build_cell_start(int n);
+  // The number of live (class < 2) particles after build_cell_start: a 4-byte copy to
+  // the host (a synchronisation on the GPU, so the step does not ask for it there).
+  [[nodiscard]] int live_count() const;
 
   [[nodiscard]] const std::uint32_t* permutation() const { return perm_.data(); }
   [[nodiscard]] GridView view(const Vec3* sorted_pos) const { return {spec_, cell_start_.data(), sorted_pos}; }

@@ -1,10 +1,16 @@
 #include "surge/particles/particle_store.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
 namespace surge::particles {
 
 void ParticleStore::upload(const HostParticles& h) {
   n_ = static_cast<int>(h.size());
   const auto n = h.size();
+  removed_pending_ =
+      static_cast<int>(std::count(h.kind.begin(), h.kind.end(), static_cast<std::uint8_t>(Kind::Removed)));
   par::upload(pos_, h.pos);
   par::upload(vel_, h.vel);
   par::upload(vel_prev_, h.vel_prev.size() == n ? h.vel_prev : h.vel);
@@ -73,7 +79,16 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   reorder(rho_prev_, drho_, perm);
   reorder(kind_, cls_, perm);
   reorder(id_, tmpu_, perm);
-  const int live = grid.build_cell_start(n_);
+  grid.build_cell_start(n_);
+  // The host knows how many were flagged, so the GPU need not report the live count.
+  // The CPU builds, where the check costs nothing, verify it on every sort.
+  const int live = n_ - removed_pending_;
+#if !defined(SURGE_BACKEND_CUDA)
+  if (grid.live_count() != live)
+    throw std::logic_error("particle sort: " + std::to_string(n_ - grid.live_count()) + " particles were Removed, " +
+                           std::to_string(removed_pending_) + " reported through add_removed");
+#endif
+  removed_pending_ = 0;
   const int dropped = n_ - live;
   n_ = live;
   for (auto* b : {&pos_, &vel_, &vel_prev_, &acc_}) b->truncate(static_cast<std::size_t>(live));

@@ -62,6 +62,9 @@ public:
   // Sorts by cell, reorders every field and drops particles marked Removed.
   // Returns the number of particles dropped.
   int sort(neighbour::UniformGrid& grid);
+  // Whoever marks particles Removed in the execution space says how many, so that the
+  // sort knows the live count without reading it back from the device.
+  void add_removed(int k) { removed_pending_ += k; }
   // Bytes held in the execution space, grid excluded.
   [[nodiscard]] std::size_t bytes() const;
 
@@ -69,6 +72,7 @@ private:
   template <class T>
   void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
   int n_ = 0;
+  int removed_pending_ = 0; // marked Removed since the last sort
   par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
   par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
   par::Buffer<std::uint8_t> kind_, cls_;

@@ -49,23 +49,7 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
     const auto& spec = pr.spec;
     double v = 0;
     if (spec.type == GaugeType::Height) {
-      // Highest z where the fluid fraction reaches 0.5, interpolated between samples;
-      // the domain bottom when the line is dry.
-      v = points_host_[pr.first_sample].z;
-      for (int k = pr.n_samples - 1; k >= 0; --k) {
-        const double f = sums[pr.first_sample + k].vw;
-        if (f >= 0.5) {
-          const double z = points_host_[pr.first_sample + k].z;
-          if (k + 1 < pr.n_samples) {
-            const double f1 = sums[pr.first_sample + k + 1].vw;
-            v = z + dz_ * (f - 0.5) / (f - f1);
-          } else {
-            v = z;
-          }
-          break;
-        }
-      }
-      v += origin_z_;
+      v = (spec.surface_highest ? highest_wet(pr, sums) : column_top(pr, sums)) + origin_z_;
     } else if (spec.type == GaugeType::Pressure || spec.type == GaugeType::Velocity) {
       const PointSums& s = sums[pr.first_sample];
       // Shepard normalisation; a point with too little fluid around it reads 0.
@@ -92,6 +76,41 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
     values.push_back(v);
   }
   return values;
+}
+
+// What a wave gauge reads: the top of the water standing on the bed. Up the line, the
+// filled fraction (water and wall together) first reaches 0.5 at the bed or in the water
+// on it, and the surface is where it next falls below 0.5, interpolated between samples.
+// Spray above an air gap is not counted. A dry line reads the bed (or, where no wall is
+// below the line, its lowest point).
+double Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) const {
+  const auto filled = [&](int k) {
+    const PointSums& s = sums[pr.first_sample + k];
+    return static_cast<double>(s.vw + s.vw_solid);
+  };
+  int k = 0;
+  while (k < pr.n_samples && filled(k) < 0.5) ++k; // below the tank, if the line starts there
+  if (k == pr.n_samples) return points_host_[pr.first_sample].z;
+  for (; k + 1 < pr.n_samples; ++k) {
+    const double f0 = filled(k), f1 = filled(k + 1);
+    if (f1 < 0.5) return points_host_[pr.first_sample + k].z + dz_ * (f0 - 0.5) / (f0 - f1);
+  }
+  return points_host_[pr.first_sample + pr.n_samples - 1].z;
+}
+
+// The highest z where the fluid fraction reaches 0.5, interpolated between samples: the
+// surface where the water is one body, but a sheet of spray above it reads as the surface.
+// The domain bottom when the line is dry.
+double Gauges::highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const {
+  for (int k = pr.n_samples - 1; k >= 0; --k) {
+    const double f = sums[pr.first_sample + k].vw;
+    if (f < 0.5) continue;
+    const double z = points_host_[pr.first_sample + k].z;
+    if (k + 1 == pr.n_samples) return z;
+    const double f1 = sums[pr.first_sample + k + 1].vw;
+    return z + dz_ * (f - 0.5) / (f - f1);
+  }
+  return points_host_[pr.first_sample].z;
 }
 
 } // namespace surge::sph

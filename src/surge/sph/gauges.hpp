@@ -10,18 +10,21 @@
 
 namespace surge::sph {
 
-// Kernel sums at a point over fluid particles: sum V W, sum V W p, sum V W v.
+// Kernel sums at a point over fluid particles: sum V W, sum V W p, sum V W v; and
+// sum V W over fluid and wall particles together (water or solid around the point).
 struct PointSums {
   Real vw = 0, vwp = 0;
   Vec3 vwv{};
+  Real vw_solid = 0; // walls only; vw + vw_solid is the filled fraction
 };
 
 [[nodiscard]] SURGE_HD inline PointSums fluid_sums(const WcsphParams& prm, const neighbour::GridView& g,
                                                    const particles::ParticleView& p, const Vec3& x) {
   PointSums s;
   const Real r2max = prm.kernel.support() * prm.kernel.support();
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
   neighbour::for_each_neighbour(g, x, r2max, [&](int j, const Vec3&, Real r2) {
+    if (p.kind[j] == wall) s.vw_solid += prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     if (p.kind[j] != fluid) return;
     const Real vw = prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     s.vw += vw;
@@ -52,6 +55,8 @@ private:
   par::Buffer<PointSums> sums_;
   double dz_ = 0;
   double origin_z_ = 0;
+  [[nodiscard]] double column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
+  [[nodiscard]] double highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const;
 };
 
 } // namespace surge::sph

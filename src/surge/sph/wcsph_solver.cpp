@@ -3,7 +3,6 @@
 #include "surge/core/error.hpp"
 #include "surge/geometry/particle_generators.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -236,9 +235,11 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
 }
 
 void WcsphSolver::sort_and_rates() {
-  const auto t0 = std::chrono::steady_clock::now();
-  store_.sort(grid_);
-  time_sort += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  {
+    const auto t = par::timed(par::Phase::Sort);
+    store_.sort(grid_);
+  }
+  const auto t = par::timed(par::Phase::Rates);
   const auto p = store_.view();
   detail::compute_rates(prm_, grid_.view(p.pos), p);
   fresh_ = true;
@@ -254,7 +255,10 @@ void WcsphSolver::refresh() {
   if (!fresh_) sort_and_rates();
 }
 
-double WcsphSolver::dt_from_rates() { return case_.sph.cfl * static_cast<double>(detail::min_dt(prm_, store_.view())); }
+double WcsphSolver::dt_from_rates() {
+  const auto t = par::timed(par::Phase::TimeStep);
+  return case_.sph.cfl * static_cast<double>(detail::min_dt(prm_, store_.view()));
+}
 
 double WcsphSolver::stable_dt() {
   refresh();
@@ -262,17 +266,19 @@ double WcsphSolver::stable_dt() {
 }
 
 int WcsphSolver::flag_removals(StepStats& s) {
+  const auto t = par::timed(par::Phase::Removal);
   const auto rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0),
              rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
   const long long packed = detail::flag_removals(store_.view(), dom_lo_, dom_hi_, rmin, rmax);
   s.removed_domain = static_cast<int>(packed & ((1LL << 21) - 1));
   s.removed_density = static_cast<int>((packed >> 21) & ((1LL << 21) - 1));
   s.non_finite = static_cast<int>(packed >> 42);
-  return s.removed_domain + s.removed_density + s.non_finite;
+  const int flagged = s.removed_domain + s.removed_density + s.non_finite;
+  store_.add_removed(flagged);
+  return flagged;
 }
 
 StepStats WcsphSolver::step(double dt_max) {
-  const auto t0 = std::chrono::steady_clock::now();
   refresh();
   StepStats s;
   const double dt_d = std::fmin(dt_from_rates(), dt_max);
@@ -282,10 +288,18 @@ StepStats WcsphSolver::step(double dt_max) {
   if (symplectic_) store_.reserve_position_scratch();
   const auto p = store_.view();
   if (!symplectic_) {
+    const auto t = par::timed(par::Phase::Integrate);
     detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0);
   } else {
-    detail::symplectic_predict(p, dt, rho0);
-    detail::compute_rates(prm_, grid_.view(p.pos), p);
+    {
+      const auto t = par::timed(par::Phase::Integrate);
+      detail::symplectic_predict(p, dt, rho0);
+    }
+    {
+      const auto t = par::timed(par::Phase::Rates);
+      detail::compute_rates(prm_, grid_.view(p.pos), p);
+    }
+    const auto t = par::timed(par::Phase::Integrate);
     detail::symplectic_correct(p, dt, rho0);
   }
   ++steps_;
@@ -295,7 +309,6 @@ StepStats WcsphSolver::step(double dt_max) {
     s.removed_lo = lo;
     s.removed_hi = hi;
   }
-  time_total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return s;
 }
 

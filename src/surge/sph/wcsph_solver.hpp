@@ -2,6 +2,7 @@
 #pragma once
 #include "surge/core/case.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
+#include "surge/par/phase_timer.hpp"
 #include "surge/particles/particle_store.hpp"
 #include "surge/sph/wcsph_rates.hpp"
 
@@ -59,9 +60,6 @@ public:
   void refresh();
   // Positions were changed from outside (body particles moved): rates must be recomputed.
   void invalidate() { fresh_ = false; }
-
-  // Timing of the last steps, seconds: neighbour search + sort, everything.
-  double time_sort = 0, time_total = 0;
 
 private:
   void sort_and_rates();

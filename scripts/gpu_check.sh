@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# The prepared device check (DEVELOPERS.md "GPUs"), in two halves:
+#
+#   scripts/gpu_check.sh build   here, without a GPU: builds the cuda preset for sm_80 and
+#                                sm_90, records CPU reference gauges, and puts everything
+#                                that must travel into gpu_bundle/ (git-ignored, < 64 MiB)
+#   scripts/gpu_check.sh run     on the GPU machine (carry gpu_bundle): unit tests,
+#                                benchmarks, CPU-vs-GPU gauges and one validation run, each
+#                                time-boxed, inside 9 minutes; results and summary.md under
+#                                $OUT/gpu_check (and $OUT/gpu_check.tar.gz)
+#
+# `run` needs only the bundle, python3 with numpy, and the NVIDIA driver.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bundle=gpu_bundle
+# The demo's first 100 steps, gauges every 0.2 ms, the height gauge in the column and the
+# pressure probe at its foot (the defaults stay dry that early).
+demo_sets="--set time.max_steps=100 --set time.gauge_every=0.0002 --set time.output_every=1 \
+  --set gauges.0.x=0.07 --set gauges.1.at=[0.02,0.05,0.02]"
+
+build() {
+  cmake --preset cuda -DCMAKE_CUDA_ARCHITECTURES="80;90"
+  cmake --build --preset cuda -j"$(nproc)"
+  # CPU reference for the gauge comparison.
+  [ -x build/cpu/src/surge/surge ] || { cmake --preset cpu && cmake --build --preset cpu -j"$(nproc)"; }
+  rm -rf "$bundle" && mkdir -p "$bundle"/{bin,lib,ref}
+  local b=build/cuda
+  cp "$b"/src/surge/surge "$b"/benchmarks/bench_* "$bundle"/bin/
+  find "$b"/tests -maxdepth 1 -name 'test_*' -type f -executable -exec cp {} "$bundle"/bin/ \;
+  strip "$bundle"/bin/*
+  cp -L /usr/lib/x86_64-linux-gnu/libyaml-cpp.so.0.7 "$bundle"/lib/
+  cp -L "$(dirname "$(readlink -f "$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)")")"/../lib64/libcudart.so.13 \
+    "$bundle"/lib/
+  cp -r cases "$bundle"/cases
+  mkdir -p "$bundle"/scripts && cp scripts/gpu_check.sh scripts/compare_gauges.py "$bundle"/scripts/
+  OMP_WAIT_POLICY=PASSIVE build/cpu/src/surge/surge run cases/demo_dambreak.yaml --out "$bundle"/ref/demo --threads 2 \
+    --quiet $demo_sets
+  du -sh "$bundle"
+}
+
+run() {
+  local here out t0
+  here=$(pwd)
+  out=${OUT:-/tmp/out}/gpu_check
+  mkdir -p "$out"
+  export LD_LIBRARY_PATH=$here/lib:${LD_LIBRARY_PATH:-}
+  export PATH=$here/bin:$PATH
+  t0=$(date +%s)
+  local summary=$out/summary.md
+  {
+    echo "# surge device check, $(date -u +%F' '%T) UTC"
+    nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader 2>/dev/null || true
+    echo
+    echo "| step | result | seconds |"
+    echo "|---|---|---|"
+  } >"$summary"
+  # step NAME LIMIT_S CMD...: runs CMD with a time box, logs to $out/NAME.log, adds a row.
+  step() {
+    local name=$1 limit=$2
+    shift 2
+    local s rc=0
+    s=$(date +%s)
+    timeout -s INT -k 10 "$limit" "$@" >"$out/$name.log" 2>&1 || rc=$?
+    local r="pass"
+    [ $rc -ne 0 ] && r="FAIL (rc $rc)"
+    [ $rc -eq 124 ] && r="TIMEOUT ($limit s)"
+    echo "| $name | $r | $(($(date +%s) - s)) |" >>"$summary"
+  }
+  # 1. Unit tests (GoogleTest binaries; the Python end-to-end tests need VTK, not there).
+  for t in bin/test_*; do step "$(basename "$t")" 120 "$t"; done
+  # 2. The same case on CPU and GPU: gauges over the demo's first 40 steps.
+  step surge_demo_100_steps 60 surge run cases/demo_dambreak.yaml --out "$out/demo" --quiet $demo_sets
+  step gauges_cpu_vs_gpu 30 python3 scripts/compare_gauges.py ref/demo/gauges.csv "$out/demo/gauges.csv" 1e-3
+  # 3. Benchmarks (JSON lines with the phase breakdown).
+  step bench_demo 60 bench_sph cases/demo_dambreak.yaml 400 1
+  step bench_dambreak 60 bench_sph cases/bench_dambreak.yaml 200 1
+  step bench_spheric_1e6 90 bench_sph cases/spheric_test2.yaml 200 1 --set dp=0.0102
+  step bench_spheric_6e6 90 bench_sph cases/spheric_test2.yaml 50 1 --set dp=0.0056
+  step bench_dem_1e5 60 bench_dem 100000 2000 1
+  step bench_dem_1e6 90 bench_dem 1000000 200 1
+  step bench_coupling_0 60 bench_coupling 0 100 1
+  step bench_coupling_1e4 60 bench_coupling 10000 100 1
+  step bench_neighbour 30 bench_neighbour 1000000 1
+  # 4. One validation run: water entry at D/12 to 0.06 s (CPU build: depth 5.83 cm).
+  step water_entry_d12 150 surge run cases/water_entry.yaml --out "$out/water_entry" --quiet \
+    --set dp=0.0021167 --set time.end=0.06 --set time.output_every=0.06
+  {
+    echo
+    echo "total: $(($(date +%s) - t0)) s"
+    echo
+    echo "## benchmark lines"
+    for f in "$out"/bench_*.log; do echo "- $(basename "$f" .log): $(grep '^{' "$f" | tail -1)"; done
+    echo
+    echo "## gauges, CPU vs GPU"
+    tail -5 "$out/gauges_cpu_vs_gpu.log"
+    echo
+    echo "## water entry D/12, last gauge row"
+    tail -1 "$out/water_entry/gauges.csv" 2>/dev/null || echo "(no gauges)"
+  } >>"$summary"
+  rm -f "$out"/*/*.vtp "$out"/*/*/*.vtp 2>/dev/null || true
+  tar -C "$(dirname "$out")" -czf "$(dirname "$out")/gpu_check.tar.gz" gpu_check
+  cat "$summary"
+}
+
+case "${1:-}" in
+  build) build ;;
+  run) run ;; # from gpu_bundle/scripts, the top cd has put us in the bundle
+  *)
+    echo "usage: scripts/gpu_check.sh build | run" >&2
+    exit 2
+    ;;
+esac
