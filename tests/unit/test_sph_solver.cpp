@@ -204,3 +204,34 @@ TEST(Gauges, ColumnReadingIgnoresSprayAboveAnAirGap) {
   EXPECT_NEAR(v[1], 0.22, dp / 2);
   EXPECT_NEAR(v[2], 0.0, dp / 2);
 }
+
+// A fluid box that is not a whole number of spacings: the demo's 0.146 m column at
+// dp = 0.01 holds 14 particles across, centred, so the water leaves 3 mm on each side
+// instead of 6 mm on one; a mirrored copy of the box gets the mirrored lattice.
+TEST(InitialState, FluidLatticeIsCentredInItsBox) {
+  auto extent = [](double x0, double x1) {
+    const Case c =
+        io::read_case_text("name: col\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.6,0.1,0.4]}\n"
+                           "fluid: [{box: {min: [" +
+                               std::to_string(x0) + ",0,0], max: [" + std::to_string(x1) + ",0.1,0.292]}}]\n",
+                           "col.yaml");
+    const auto init = sph::build_initial_state(c);
+    double lo = 1e9, hi = -1e9, zlo = 1e9, zhi = -1e9;
+    for (const auto& p : init.particles.pos) {
+      lo = std::min(lo, static_cast<double>(p.x));
+      hi = std::max(hi, static_cast<double>(p.x));
+      zlo = std::min(zlo, static_cast<double>(p.z));
+      zhi = std::max(zhi, static_cast<double>(p.z));
+    }
+    EXPECT_NEAR(init.fluid_volume_asked, (x1 - x0) * 0.1 * 0.292, 1e-12);
+    EXPECT_EQ(init.n_fluid, 14U * 10U * 29U);
+    EXPECT_NEAR(zlo - 0.005, 0.292 - (zhi + 0.005), 1e-6); // 29 layers in 0.292 m: 1 mm above and below
+    return std::pair{lo - 0.005 - x0, x1 - (hi + 0.005)};  // water edge to box face, each side
+  };
+  const auto [left, right] = extent(0.0, 0.146);
+  EXPECT_NEAR(left, 0.003, 1e-6);
+  EXPECT_NEAR(right, 0.003, 1e-6);
+  const auto [left_m, right_m] = extent(0.6 - 0.146, 0.6);
+  EXPECT_NEAR(left_m, right, 1e-6);
+  EXPECT_NEAR(right_m, left, 1e-6);
+}

@@ -16,6 +16,7 @@ struct Box {
     return p.x >= min.x - tol && p.x <= max.x + tol && p.y >= min.y - tol && p.y <= max.y + tol && p.z >= min.z - tol &&
            p.z <= max.z + tol;
   }
+  [[nodiscard]] double volume() const { return (max.x - min.x) * (max.y - min.y) * (max.z - min.z); }
 };
 
 struct TimeConfig {
@@ -40,6 +41,7 @@ struct SphConfig {
   double c0 = 0.0;                   // 0: c0 = eta sqrt(g hmax); > 0 sets the speed of sound directly
   std::string integrator = "verlet"; // verlet | symplectic
   std::string diffusion = "molteni"; // density diffusion: molteni (SPEC §2.3) | fourtakas (dynamic part only)
+  std::string boundary = "dynamic";  // dynamic (the paper's, SPEC §2.6) | mdbc (English et al. 2022, no gap)
   int euler_every = 40;
   double rho_min = 0.7; // removal bounds, as fractions of rho0
   double rho_max = 1.3;

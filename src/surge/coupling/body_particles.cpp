@@ -61,8 +61,8 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
   init.n_fluid -= out.fluid_removed;
   hp = std::move(kept);
 
-  // 2. Body particles, ids after every existing one.
-  std::uint32_t next_id = 0;
+  // 2. Body particles, ids after every existing one: the boundary ids continue.
+  auto next_id = static_cast<std::uint32_t>(init.first_boundary_id + init.boundary_ghost.size());
   for (auto id : hp.id) next_id = std::max(next_id, id + 1);
   BodyLayout& L = out.layout;
   L.first_id = next_id;
@@ -82,6 +82,11 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
         if (f.box.contains(abs)) rho = sph::still_water_density(c, eos, f, abs);
       hp.push(p.pos, p.vel, rho, Kind::Body, next_id++);
       L.offset.push_back(off);
+      // mDBC ghost node: mirrored through the sphere's surface, r -> 2R - r along the offset.
+      const double r = norm(o);
+      const Vec3 ghost = r > 0 ? Vec3(o * (2 * (static_cast<double>(spheres[k].radius) - r) / r)) : Vec3{};
+      L.ghost.push_back(ghost);
+      init.boundary_ghost.push_back(dem::rotate(st.q, ghost));
       L.owner.push_back(static_cast<std::uint32_t>(k));
     }
   }

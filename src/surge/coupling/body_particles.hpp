@@ -24,6 +24,7 @@ namespace surge::coupling {
 struct BodyLayout {
   std::uint32_t first_id = 0;
   std::vector<Vec3> offset;         // body frame, by body index (id - first_id)
+  std::vector<Vec3> ghost;          // mDBC ghost node - particle, body frame, by body index
   std::vector<std::uint32_t> owner; // sphere id, by body index
   std::vector<std::uint32_t> start; // n_spheres + 1 entries
   [[nodiscard]] std::size_t size() const { return offset.size(); }

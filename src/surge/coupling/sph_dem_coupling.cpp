@@ -34,16 +34,20 @@ void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint
       });
 }
 
+// Body particles from their spheres' states; their mDBC ghost offsets turn with them
+// (ghost_out[id - first_boundary], whether or not mDBC is on: it costs one store).
 void place(const particles::ParticleView& p, std::uint32_t first, const Vec3* offset, const std::uint32_t* owner,
-           const dem::RigidState* state) {
+           const dem::RigidState* state, const Vec3* ghost0, Vec3* ghost_out, std::uint32_t first_boundary) {
   const auto body = static_cast<std::uint8_t>(Kind::Body);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
         if (p.kind[i] != body) return;
         const std::uint32_t b = p.id[i] - first;
-        const dem::RigidPoint r = dem::rigid_point(state[owner[b]], offset[b]);
+        const dem::RigidState& s = state[owner[b]];
+        const dem::RigidPoint r = dem::rigid_point(s, offset[b]);
         p.pos[i] = r.pos;
         p.vel[i] = r.vel;
+        ghost_out[p.id[i] - first_boundary] = dem::rotate(s.q, ghost0[b]);
       });
 }
 } // namespace detail
@@ -54,6 +58,7 @@ SphDemCoupling::SphDemCoupling(const BodyLayout& layout, int n_spheres, Real dt_
     throw std::invalid_argument("body layout does not match the number of spheres");
   if (!(dt_dem > 0)) throw std::invalid_argument("the DEM time step must be positive");
   par::upload(offset_, layout.offset);
+  par::upload(ghost_, layout.ghost);
   par::upload(owner_, layout.owner);
   par::upload(start_, layout.start);
   slot_.resize(n_body_);
@@ -77,7 +82,8 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
 void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto t = par::timed(par::Phase::Coupling);
   dem.rigid_states(state_);
-  detail::place(sph.view(), first_id_, offset_.data(), owner_.data(), state_.data());
+  detail::place(sph.view(), first_id_, offset_.data(), owner_.data(), state_.data(), ghost_.data(), sph.ghost_offsets(),
+                sph.first_boundary_id());
   sph.invalidate();
 }
 

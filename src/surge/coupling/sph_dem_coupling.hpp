@@ -42,7 +42,7 @@ private:
   std::size_t n_body_ = 0;
   int n_spheres_ = 0;
   Real dt_dem_ = 0;
-  par::Buffer<Vec3> offset_;
+  par::Buffer<Vec3> offset_, ghost_;                // body frame: particle offsets, mDBC ghost offsets
   par::Buffer<std::uint32_t> owner_, start_, slot_; // slot_: body index -> current SPH array index
   par::Buffer<dem::RigidState> state_;
 };

@@ -16,11 +16,22 @@ std::vector<double> lattice(double lo, double hi, double dp) {
   for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * dp);
   return v;
 }
+// The same number of coordinates, the lattice centred in [lo, hi]: the shortfall of a
+// region that is not a whole number of spacings (under one spacing) is split between
+// both ends instead of all of it at hi.
+std::vector<double> lattice_centred(double lo, double hi, double dp) {
+  std::vector<double> v = lattice(lo, hi, dp);
+  const double shift = std::max(0.0, (hi - lo - static_cast<double>(v.size()) * dp) / 2);
+  for (double& x : v) x += shift;
+  return v;
+}
 bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.open.end(), f) != w.open.end(); }
 
-// Signed distance to the closest triangle, positive on the side the normals point to.
-double signed_distance(const Mesh& m, const Vec3d& p) {
+// Signed distance to the closest triangle, positive on the side the normals point to;
+// `at` receives the closest point.
+double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr) {
   double best = 1e300, best_sign = 1, best_align = -1;
+  Vec3d best_point = p;
   for (const auto& t : m.tris) {
     const Vec3d c = closest_point(t, p);
     const Vec3d d = p - c;
@@ -33,15 +44,18 @@ double signed_distance(const Mesh& m, const Vec3d& p) {
       best = dist;
       best_sign = side < 0 ? -1 : 1;
       best_align = align;
+      best_point = c;
     }
   }
+  if (at) *at = best_point;
   return best * best_sign;
 }
 } // namespace
 
-std::vector<Vec3d> fill_box(const Box& b, double dp) {
+std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred) {
   std::vector<Vec3d> pts;
-  const auto xs = lattice(b.min.x, b.max.x, dp), ys = lattice(b.min.y, b.max.y, dp), zs = lattice(b.min.z, b.max.z, dp);
+  const auto axis = centred ? lattice_centred : lattice;
+  const auto xs = axis(b.min.x, b.max.x, dp), ys = axis(b.min.y, b.max.y, dp), zs = axis(b.min.z, b.max.z, dp);
   pts.reserve(xs.size() * ys.size() * zs.size());
   for (double z : zs)
     for (double y : ys)
@@ -115,6 +129,28 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
         if (d <= 0 && d > -band) pts.push_back(p);
       }
   return pts;
+}
+
+Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p) {
+  Vec3d s = p;
+  if (w.is_mesh) {
+    (void)signed_distance(*mesh, p, &s);
+  } else if (!w.solid) {
+    // Outside a tank box: the closest point of the box is p clamped to it (a face, an
+    // edge or a corner), so corner particles mirror diagonally into the water.
+    for (int k = 0; k < 3; ++k) s[k] = std::clamp(p[k], w.box.min[k], w.box.max[k]);
+  } else {
+    // Inside a solid box: the nearest face.
+    double best = 1e300;
+    for (int k = 0; k < 3; ++k)
+      for (const double f : {w.box.min[k], w.box.max[k]})
+        if (std::fabs(p[k] - f) < best) {
+          best = std::fabs(p[k] - f);
+          s = p;
+          s[k] = f;
+        }
+  }
+  return s * 2.0 - p;
 }
 
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {

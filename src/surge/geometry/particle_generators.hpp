@@ -13,13 +13,16 @@ namespace surge::geometry {
 int wall_layers(const Case& c);
 
 // Lattice points (i + 1/2) dp inside the box.
-std::vector<Vec3d> fill_box(const Box& b, double dp);
+std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred = false);
 // Layers of thickness `layers` dp around a tank box (outside it, faces in `open` left out),
 // or inside it when `solid`.
 std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers);
 // Lattice points (aligned to `origin` + (i + 1/2) dp) behind the mesh surface
 // (the side its normals point away from) within layers * dp of it.
 std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers);
+// The ghost node of a wall particle at p (modified dynamic boundary): p mirrored through
+// the closest point of the wall's surface, into the fluid side.
+Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);

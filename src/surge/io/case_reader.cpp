@@ -359,7 +359,7 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (const auto s = root["sph"]; s.IsDefined()) {
     r.check_keys(s, "sph",
                  {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "diffusion",
-                  "euler_every", "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
+                  "boundary", "euler_every", "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
     auto& p = c.sph;
     p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
     p.alpha = r.get(s, "sph", "alpha", p.alpha);
@@ -371,6 +371,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     p.c0 = r.get(s, "sph", "c0", p.c0);
     p.integrator = r.get(s, "sph", "integrator", p.integrator);
     p.diffusion = r.get(s, "sph", "diffusion", p.diffusion);
+    p.boundary = r.get(s, "sph", "boundary", p.boundary);
     p.euler_every = r.get(s, "sph", "euler_every", p.euler_every);
     p.rho_min = r.get(s, "sph", "rho_min", p.rho_min);
     p.rho_max = r.get(s, "sph", "rho_max", p.rho_max);
@@ -391,6 +392,9 @@ Case parse(const YAML::Node& root, Reader& r) {
       r.fail(s["integrator"], "sph.integrator", "must be verlet or symplectic");
     if (p.diffusion != "molteni" && p.diffusion != "fourtakas")
       r.fail(s["diffusion"], "sph.diffusion", "must be molteni or fourtakas");
+    if (p.boundary != "dynamic" && p.boundary != "mdbc")
+      r.fail(s["boundary"], "sph.boundary",
+             "must be dynamic (the paper's) or mdbc (modified dynamic, without the gap)");
     if (p.euler_every < 1) r.fail(s["euler_every"], "sph.euler_every", "must be at least 1");
     if (!(p.rho_min > 0 && p.rho_min < 1)) r.fail(s["rho_min"], "sph.rho_min", "must lie in (0, 1)");
     if (!(p.rho_max > 1)) r.fail(s["rho_max"], "sph.rho_max", "must exceed 1");
@@ -672,7 +676,8 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "delta" << YAML::Value << s.delta << YAML::Key << "eta" << YAML::Value << s.eta;
   e << YAML::Key << "cfl" << YAML::Value << s.cfl << YAML::Key << "rho0" << YAML::Value << s.rho0;
   e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "c0" << YAML::Value << s.c0 << YAML::Key
-    << "integrator" << YAML::Value << s.integrator << YAML::Key << "diffusion" << YAML::Value << s.diffusion;
+    << "integrator" << YAML::Value << s.integrator << YAML::Key << "diffusion" << YAML::Value << s.diffusion
+    << YAML::Key << "boundary" << YAML::Value << s.boundary;
   e << YAML::Key << "euler_every" << YAML::Value << s.euler_every << YAML::Key << "rho_min" << YAML::Value << s.rho_min;
   e << YAML::Key << "rho_max" << YAML::Value << s.rho_max << YAML::Key << "max_removed_share" << YAML::Value
     << s.max_removed_share << YAML::Key << "hydrostatic_init" << YAML::Value << s.hydrostatic_init;

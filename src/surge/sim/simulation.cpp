@@ -114,6 +114,14 @@ int check(const Case& c) {
   std::printf("case        %s (%s)\n", c.name.c_str(), c.source.c_str());
   std::printf("particles   %zu fluid, %zu wall (%d wall layers), %zu fluid particles dropped inside walls\n",
               init.n_fluid, init.n_wall, geometry::wall_layers(c), init.fluid_dropped_by_walls);
+  if (!c.fluid.empty()) {
+    // Each fluid box holds a whole number of spacings per axis, centred in the box.
+    // Counted before the water inside spheres is taken out.
+    const double placed = static_cast<double>(init.n_fluid + (cp ? cp->fluid_removed : 0)) * c.dp * c.dp * c.dp;
+    std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes (%.1f %%; lattices of whole spacings, "
+                "centred in each box)\n",
+                placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
+  }
   if (cp) {
     std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "
                 "spheres\n",
@@ -314,6 +322,9 @@ int run(const Case& c, const RunOptions& opt) {
       spheres_pvd->restore(entries);
     }
     solver.restore(ck.particles, ck.steps);
+    // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
+    // placed again are the checkpoint's, bit for bit).
+    if (cp) cp->coupling->place_bodies(solver, *cp->dem);
     ck.particles = {};
     if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
   } else {

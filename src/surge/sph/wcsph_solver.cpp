@@ -28,7 +28,10 @@ InitialState build_initial_state(const Case& c) {
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
   for (const auto& f : c.fluid) {
-    for (const auto& p : geometry::fill_box(f.box, c.dp)) {
+    // Centred: a box that is not a whole number of spacings keeps its water in the middle,
+    // (surge check reports the volume placed against the volume asked for).
+    s.fluid_volume_asked += f.box.volume();
+    for (const auto& p : geometry::fill_box(f.box, c.dp, true)) {
       bool blocked = false;
       for (std::size_t w = 0; w < c.walls.size() && !blocked; ++w)
         blocked = geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp);
@@ -40,12 +43,16 @@ InitialState build_initial_state(const Case& c) {
       ++s.n_fluid;
     }
   }
+  s.first_boundary_id = next_id;
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];
     const auto pts =
         ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers) : geometry::box_wall(ws, c.dp, layers);
     const std::uint32_t first = next_id;
-    for (const auto& p : pts) s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
+    for (const auto& p : pts) {
+      s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
+      s.boundary_ghost.push_back(Vec3(geometry::ghost_point(ws, meshes[w].get(), p) - p));
+    }
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();
   }
@@ -61,8 +68,24 @@ namespace detail {
 // The loops of one SPH step, as free functions: nvcc's extended lambdas may not
 // live in private member functions.
 
+// mDBC: each boundary particle takes the fluid's density at its ghost node (boundary_mdbc.hpp).
+void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
+                        const particles::ParticleView& p) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  const Real rho0 = prm.eos.rho0;
+  par::parallel_for_uneven(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] == fluid) return;
+        const Vec3 xb = p.pos[i];
+        const Real rho = mdbc_density(prm, g, p, xb, xb + gh.offset[p.id[i] - gh.first_id], p.rho[i]);
+        p.rho[i] = rho < rho0 ? rho0 : rho; // boundary particles must not pull the fluid
+      });
+}
+
 // EOS then per-particle rates (continuity, momentum, signal speed).
-void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
+void compute_rates(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
+                   const particles::ParticleView& p) {
+  if (gh.on) boundary_densities(prm, gh, g, p);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
   par::parallel_for_uneven(
@@ -232,6 +255,10 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(init.particles);
+  par::upload(ghost_, init.boundary_ghost);
+  ghosts_.on = c.sph.boundary == "mdbc";
+  ghosts_.first_id = init.first_boundary_id;
+  ghosts_.offset = ghost_.data();
 }
 
 void WcsphSolver::sort_and_rates() {
@@ -241,7 +268,7 @@ void WcsphSolver::sort_and_rates() {
   }
   const auto t = par::timed(par::Phase::Rates);
   const auto p = store_.view();
-  detail::compute_rates(prm_, grid_.view(p.pos), p);
+  detail::compute_rates(prm_, ghosts_, grid_.view(p.pos), p);
   fresh_ = true;
 }
 
@@ -297,7 +324,7 @@ StepStats WcsphSolver::step(double dt_max) {
     }
     {
       const auto t = par::timed(par::Phase::Rates);
-      detail::compute_rates(prm_, grid_.view(p.pos), p);
+      detail::compute_rates(prm_, ghosts_, grid_.view(p.pos), p);
     }
     const auto t = par::timed(par::Phase::Integrate);
     detail::symplectic_correct(p, dt, rho0);

@@ -4,6 +4,7 @@
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
 #include "surge/particles/particle_store.hpp"
+#include "surge/sph/boundary_mdbc.hpp"
 #include "surge/sph/wcsph_rates.hpp"
 
 #include <cstdint>
@@ -20,6 +21,11 @@ struct InitialState {
   // Wall particle ids of each case wall: [first, last) (ids are assigned in order).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> wall_ids;
   std::size_t fluid_dropped_by_walls = 0;
+  double fluid_volume_asked = 0; // sum of the fluid boxes' volumes (n_fluid dp^3 is what was placed)
+  // Ghost nodes of the boundary (wall, then body) particles for sph.boundary: mdbc, as
+  // ghost - position, indexed by id - first_boundary_id (fluid ids come first).
+  std::uint32_t first_boundary_id = 0;
+  std::vector<Vec3> boundary_ghost;
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
@@ -48,6 +54,10 @@ public:
   double stable_dt();
 
   [[nodiscard]] const WcsphParams& params() const { return prm_; }
+  // Ghost offsets of the boundary particles (execution space), by id - first_boundary_id():
+  // the coupling rewrites those of body particles as their spheres turn.
+  [[nodiscard]] Vec3* ghost_offsets() { return ghost_.data(); }
+  [[nodiscard]] std::uint32_t first_boundary_id() const { return ghosts_.first_id; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes(); }
@@ -68,6 +78,8 @@ private:
 
   Case case_;
   WcsphParams prm_;
+  BoundaryGhosts ghosts_; // on with sph.boundary: mdbc
+  par::Buffer<Vec3> ghost_;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{};

@@ -1,0 +1,99 @@
+// Modified dynamic boundary condition (mDBC; English, Domínguez, Vacondio, Crespo,
+// Stansby, Lind, Chiapponi & Gómez-Gesteira 2022, Comp. Part. Mech. 9:1-15).
+//
+// With plain dynamic boundary particles (SPEC §2.6, the paper's) a wall particle's
+// density comes from its own continuity equation, which overestimates it next to the
+// water: the wall pushes the fluid about one spacing away (the "gap effect"). mDBC
+// instead gives each boundary particle b the density the fluid has at its ghost node
+// x_g, b mirrored through the wall surface into the water, extrapolated back to b:
+//
+//   [rho_g, grad rho_g] = A^-1 [sum_j V_j rho_j W_gj, sum_j V_j rho_j grad W_gj]
+//   A = sum_j V_j [[W_gj, (x_j - x_g) W_gj], [grad W_gj, (x_j - x_g) (x) grad W_gj]]
+//   rho_b = rho_g + (x_b - x_g) . grad rho_g
+//
+// a first-order consistent (linear) interpolation over fluid j near x_g. Where A is
+// near singular (|det A| < 1e-3: too few fluid neighbours, near the free surface) the
+// Shepard average sum V rho W / sum V W is used; with no fluid near the ghost the
+// density is left as it is. Boundary densities stay clamped at rho0 (no suction).
+#pragma once
+#include "surge/sph/wcsph_rates.hpp"
+
+namespace surge::sph {
+
+// Where a kernel finds each boundary particle's ghost node: x_g = x_b + offset[id - first_id].
+struct BoundaryGhosts {
+  bool on = false;
+  std::uint32_t first_id = 0;
+  const Vec3* offset = nullptr;
+};
+
+// Solves the 4x4 system a x = b in place (Gaussian elimination with partial pivoting);
+// returns det(a), 0 if singular.
+[[nodiscard]] SURGE_HD inline Real solve4(Real a[4][4], Real b[4]) {
+  Real det = 1;
+  for (int c = 0; c < 4; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < 4; ++r)
+      if ((a[r][c] < 0 ? -a[r][c] : a[r][c]) > (a[piv][c] < 0 ? -a[piv][c] : a[piv][c])) piv = r;
+    if (a[piv][c] == 0) return 0;
+    if (piv != c) {
+      for (int k = 0; k < 4; ++k) {
+        const Real t = a[c][k];
+        a[c][k] = a[piv][k];
+        a[piv][k] = t;
+      }
+      const Real t = b[c];
+      b[c] = b[piv];
+      b[piv] = t;
+      det = -det;
+    }
+    det *= a[c][c];
+    for (int r = c + 1; r < 4; ++r) {
+      const Real f = a[r][c] / a[c][c];
+      for (int k = c; k < 4; ++k) a[r][k] -= f * a[c][k];
+      b[r] -= f * b[c];
+    }
+  }
+  for (int r = 3; r >= 0; --r) {
+    Real s = b[r];
+    for (int k = r + 1; k < 4; ++k) s -= a[r][k] * b[k];
+    b[r] = s / a[r][r];
+  }
+  return det;
+}
+
+// The mDBC density of the boundary particle at xb with ghost node xg; `current` when no
+// fluid is near the ghost.
+[[nodiscard]] SURGE_HD inline Real mdbc_density(const WcsphParams& prm, const neighbour::GridView& g,
+                                                const particles::ParticleView& p, const Vec3& xb, const Vec3& xg,
+                                                Real current) {
+  const Real r2max = prm.kernel.support() * prm.kernel.support();
+  Real a[4][4] = {};
+  Real b[4] = {};
+  neighbour::for_each_fluid_neighbour(g, xg, r2max, [&](int j, const Vec3& d, Real r2) {
+    // d = x_g - x_j; grad W_gj (with respect to x_g) = d (1/r) dW/dr
+    const Real r = std::sqrt(r2);
+    const Real vol = prm.mass / p.rho[j];
+    const Real w = prm.kernel.w(r) * vol;
+    const Vec3 gw = d * (prm.kernel.dw_over_r(r) * vol);
+    const Vec3 dx = d * Real(-1); // x_j - x_g
+    const Real rho = p.rho[j];
+    a[0][0] += w;
+    b[0] += rho * w;
+    for (int k = 0; k < 3; ++k) {
+      a[0][k + 1] += dx[k] * w;
+      a[k + 1][0] += gw[k];
+      b[k + 1] += rho * gw[k];
+      for (int l = 0; l < 3; ++l) a[k + 1][l + 1] += dx[l] * gw[k];
+    }
+  });
+  if (!(a[0][0] > 0)) return current;
+  const Real shepard = b[0] / a[0][0];
+  const Real det = solve4(a, b);
+  const Real det_abs = det < 0 ? -det : det;
+  if (!(det_abs >= Real(1e-3))) return shepard;
+  const Vec3 grad{b[1], b[2], b[3]};
+  return b[0] + dot(xb - xg, grad);
+}
+
+} // namespace surge::sph
