@@ -3,7 +3,8 @@ against the MARIN measurements. The file's H1 and H3 labels are swapped (see
 data/README.md): its "H1" column is the gauge at x = 1.488 m (our H3) and
 its "H3" column the gauge at x = 0.496 m (our H1). Writes a PNG and prints a
 Markdown table: normalised RMS over the common time range (at most 0-6 s), arrival
-time and peak errors.
+time and peak errors. Height gauges H1h..H4h, if the run has them (the same lines with
+`surface: highest`), are tabulated and drawn beside the default column reading.
 
 usage: validate_spheric.py RUN_DIR --png OUT.png [--data data]
 """
@@ -47,11 +48,15 @@ print("| gauge | NRMS (RMS / measured range) | arrival exp [s] | arrival sim [s]
 print("|---|---|---|---|---|---|---|")
 fig, axes = plt.subplots(4, 3, figsize=(15, 12))
 order = ["H1", "H2", "H3", "H4", "P1", "P2", "P3", "P4", "P5", "P6", "P7", "P8"]
-for ax, name in zip(axes.flat, order):
+rows = [(n, n) for n in order[:4]] + [(n + "h", n) for n in order[:4] if n + "h" in names] + [(n, n) for n in order[4:]]
+axes_of = {n: ax for n, ax in zip(order, axes.flat)}
+for col, name in rows:
+    ax = axes_of[name]
+    highest = col != name
     te, ye = exp[:, 0], exp[:, cols[name]]
     sel = te <= tmax
     te, ye = te[sel], ye[sel]
-    ys = np.interp(te, tsim, sim[:, names.index(name)])
+    ys = np.interp(te, tsim, sim[:, names.index(col)])
     nrms = np.sqrt(np.mean((ys - ye) ** 2)) / (ye.max() - ye.min())
     if name.startswith("H"):
         # heights: arrival when the water first rises 2 cm above the gauge's initial level
@@ -62,14 +67,17 @@ for ax, name in zip(axes.flat, order):
         unit = "Pa"
     ae, as_ = arrival(te, ye, thr_e), arrival(te, ys, thr_s)
     pe, ps = ye.max(), ys.max()
-    print(f"| {name} | {nrms:.3f} | {ae:.3f} | {as_:.3f} | {pe:.4g} {unit} | {ps:.4g} {unit} | {100 * (ps - pe) / pe:+.0f} % |")
+    print(f"| {name}{' (surface: highest)' if highest else ''} | {nrms:.3f} | {ae:.3f} | {as_:.3f} | {pe:.4g} {unit} | {ps:.4g} {unit} | {100 * (ps - pe) / pe:+.0f} % |")
+    if highest:
+        ax.plot(tsim[tsim <= tmax], sim[tsim <= tmax, names.index(col)], "b:", lw=0.8, label="surge, surface: highest")
+        continue
     ax.plot(te, ye, "k-", lw=0.8, label="experiment (MARIN)")
-    ax.plot(tsim[tsim <= tmax], sim[tsim <= tmax, names.index(name)], "r-", lw=1, label="surge")
+    ax.plot(tsim[tsim <= tmax], sim[tsim <= tmax, names.index(col)], "r-", lw=1, label="surge (column)")
     ax.set_title(name)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("z [m]" if unit == "m" else "p [Pa]")
     ax.grid(alpha=0.3)
-axes.flat[0].legend()
+axes.flat[0].legend(fontsize=8)
 fig.suptitle(f"SPHERIC test 2, {s['particles']['fluid']} fluid particles")
 fig.tight_layout()
 fig.savefig(args.png, dpi=80)

@@ -90,6 +90,11 @@ check(r.returncode == 2 and "--set" in r.stderr, "--set typo is rejected and att
 # --- surge check on a good case
 r = run(["check", os.path.join(WORK, "good.yaml")])
 check(r.returncode == 0 and "fluid" in r.stdout and "first dt" in r.stdout and "run time" in r.stdout, "check prints counts, dt, run time")
+check("0.002 m^3 placed of 0.002 m^3" in r.stdout and "100.0 %" in r.stdout, "check reports the water placed (whole spacings)")
+# A box 0.11 m wide at dp = 0.02 holds 5 layers (0.1 m): 90.9 % of the water, said and warned.
+r = run(["check", os.path.join(WORK, "good.yaml"), "--set", "fluid.0.box.max=[0.11,0.1,0.2]"])
+check(r.returncode == 0 and "0.002 m^3 placed of 0.0022 m^3" in r.stdout and "90.9 %" in r.stdout
+      and "not whole numbers of dp" in r.stdout, "check reports and warns about water short of its box")
 
 # --- a good run
 out = os.path.join(WORK, "out_good")

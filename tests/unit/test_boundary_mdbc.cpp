@@ -81,14 +81,7 @@ TEST(Mdbc, LinearDensityFieldIsExtrapolatedExactly) {
 // floor, averaged over 0.3-0.6 s (several acoustic periods), is rho g (H - z) within 2 %
 // with mDBC. The same average with the dynamic boundary is printed for comparison.
 double mean_bottom_pressure(const std::string& boundary) {
-  const Case c = io::read_case_text("name: hydro\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.1,0.1,0.3]}\n"
-                                    "sph: {boundary: " +
-                                        boundary +
-                                        "}\n"
-                                        "fluid: [{box: {min: [0,0,0], max: [0.1,0.1,0.2]}}]\n"
-                                        "walls: [{name: tank, box: {min: [0,0,0], max: [0.1,0.1,0.3]}}]\n"
-                                        "gauges: [{name: P, type: pressure, at: [0.05, 0.05, 0.02]}]\n",
-                                    "hydro.yaml");
+  const Case c = io::read_case_text(test::hydrostatic_tank_case(boundary), "hydro.yaml");
   const auto init = sph::build_initial_state(c);
   sph::WcsphSolver s(c, init);
   sph::Gauges g(c, init);

@@ -31,6 +31,16 @@ inline std::string tank_case(double dp, double shift = 0.0, const std::string& e
          v(0, 0, 0) + ", max: " + v(0.2, 0.1, 0.3) + "}, open: [zmax]}]\n" + extra;
 }
 
+// Still water 0.2 m deep in a closed 0.1 x 0.1 x 0.3 m tank at dp = 0.01, with a pressure
+// probe 2 cm above the floor (gauge 0) and a height gauge in the middle (gauge 1).
+inline std::string hydrostatic_tank_case(const std::string& boundary = "dynamic") {
+  return "name: hydro\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.1,0.1,0.3]}\nsph: {boundary: " + boundary +
+         "}\n"
+         "fluid: [{box: {min: [0,0,0], max: [0.1,0.1,0.2]}}]\n"
+         "walls: [{name: tank, box: {min: [0,0,0], max: [0.1,0.1,0.3]}}]\n"
+         "gauges: [{name: P, type: pressure, at: [0.05, 0.05, 0.02]}, {name: H, type: height, x: 0.05, y: 0.05}]\n";
+}
+
 // Neighbour ids of every particle, indexed by particle id, sorted; gathered by a
 // parallel loop in the execution space so that the test runs on every backend.
 inline std::vector<std::vector<std::uint32_t>> neighbour_ids(const neighbour::GridView& g,

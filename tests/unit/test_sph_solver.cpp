@@ -119,12 +119,7 @@ TEST(WcsphSolver, HydrostaticTankSettles) {
   // Still water 0.2 m deep in a closed 0.1 x 0.1 m tank: bottom pressure -> rho g (H - z)
   // within 5 %, kinetic energy decays.
   const double H = 0.2, dp = 0.01;
-  const Case c = io::read_case_text(
-      "name: hydro\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.1,0.1,0.3]}\n"
-      "fluid: [{box: {min: [0,0,0], max: [0.1,0.1,0.2]}}]\n"
-      "walls: [{name: tank, box: {min: [0,0,0], max: [0.1,0.1,0.3]}}]\n"
-      "gauges: [{name: P, type: pressure, at: [0.05, 0.05, 0.02]}, {name: H, type: height, x: 0.05, y: 0.05}]\n",
-      "hydro.yaml");
+  const Case c = io::read_case_text(test::hydrostatic_tank_case(), "hydro.yaml");
   const auto init = sph::build_initial_state(c);
   sph::WcsphSolver s(c, init);
   sph::Gauges g(c, init);

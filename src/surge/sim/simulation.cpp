@@ -114,10 +114,12 @@ int check(const Case& c) {
   std::printf("case        %s (%s)\n", c.name.c_str(), c.source.c_str());
   std::printf("particles   %zu fluid, %zu wall (%d wall layers), %zu fluid particles dropped inside walls\n",
               init.n_fluid, init.n_wall, geometry::wall_layers(c), init.fluid_dropped_by_walls);
+  double water_share = 1;
   if (!c.fluid.empty()) {
     // Each fluid box holds a whole number of spacings per axis, centred in the box.
     // Counted before the water inside spheres is taken out.
     const double placed = static_cast<double>(init.n_fluid + (cp ? cp->fluid_removed : 0)) * c.dp * c.dp * c.dp;
+    water_share = placed / init.fluid_volume_asked;
     std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes (%.1f %%; lattices of whole spacings, "
                 "centred in each box)\n",
                 placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
@@ -143,6 +145,9 @@ int check(const Case& c) {
     std::printf("warning     %s\n", w.c_str());
     ++warnings;
   };
+  if (water_share < 0.98 && init.fluid_dropped_by_walls == 0)
+    warn("the fluid boxes hold " + fmt(100 * water_share) +
+         " % of their volume in water: their sizes are not whole numbers of dp (choose dp dividing them)");
   if (c.sph.h_over_dp < 1.2)
     warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
   if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
