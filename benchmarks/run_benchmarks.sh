@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One command for the benchmarks: builds the cpu preset if needed, then reports
-# particle-steps per second, share of time in neighbour search + sorting, and
+# particle-steps per second, the time per phase (phases_ms_share), and
 # bytes per particle on 1 and 2 threads. Results: benchmarks/results.jsonl
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -10,6 +10,8 @@
 #                                $OUT/gpu_check (and $OUT/gpu_check.tar.gz)
 #
 # `run` needs only the bundle, python3 with numpy, and the NVIDIA driver.
+# Rehearsal without a GPU: GPU_CHECK_PRESET=cpu-ci scripts/gpu_check.sh build packs the
+# CPU build instead (nothing is compiled for CUDA), and `run` then exercises the script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bundle=gpu_bundle
@@ -19,17 +21,20 @@ demo_sets="--set time.max_steps=100 --set time.gauge_every=0.0002 --set time.out
   --set gauges.0.x=0.07 --set gauges.1.at=[0.02,0.05,0.02]"
 
 build() {
-  cmake --preset cuda -DCMAKE_CUDA_ARCHITECTURES="80;90"
-  cmake --build --preset cuda -j"$(nproc)"
+  local preset=${GPU_CHECK_PRESET:-cuda}
+  if [ "$preset" = cuda ]; then
+    cmake --preset cuda -DCMAKE_CUDA_ARCHITECTURES="80;90"
+    cmake --build --preset cuda -j"$(nproc)"
+  fi
   # CPU reference for the gauge comparison.
   [ -x build/cpu/src/surge/surge ] || { cmake --preset cpu && cmake --build --preset cpu -j"$(nproc)"; }
   rm -rf "$bundle" && mkdir -p "$bundle"/{bin,lib,ref}
-  local b=build/cuda
+  local b=build/$preset
   cp "$b"/src/surge/surge "$b"/benchmarks/bench_* "$bundle"/bin/
   find "$b"/tests -maxdepth 1 -name 'test_*' -type f -executable -exec cp {} "$bundle"/bin/ \;
   strip "$bundle"/bin/*
   cp -L /usr/lib/x86_64-linux-gnu/libyaml-cpp.so.0.7 "$bundle"/lib/
-  cp -L "$(dirname "$(readlink -f "$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)")")"/../lib64/libcudart.so.13 \
+  [ "$preset" = cuda ] && cp -L "$(dirname "$(readlink -f "$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)")")"/../lib64/libcudart.so.13 \
     "$bundle"/lib/
   cp -r cases "$bundle"/cases
   mkdir -p "$bundle"/scripts && cp scripts/gpu_check.sh scripts/compare_gauges.py "$bundle"/scripts/
