@@ -10,10 +10,23 @@
 
 namespace surge::par {
 
-enum class Phase { Sort, Rates, TimeStep, Integrate, Removal, Coupling, DemSort, DemContacts, DemIntegrate, count };
+enum class Phase {
+  Sort,
+  Boundary,
+  Rates,
+  TimeStep,
+  Integrate,
+  Removal,
+  Coupling,
+  DemSort,
+  DemContacts,
+  DemIntegrate,
+  count
+};
 inline const char* phase_name(Phase p) {
   constexpr std::array<const char*, static_cast<int>(Phase::count)> names = {
-      "sort", "rates", "dt_reduction", "integrate", "removal", "coupling", "dem_sort", "dem_contacts", "dem_integrate"};
+      "sort",    "mdbc_boundary", "rates",    "dt_reduction", "integrate",
+      "removal", "coupling",      "dem_sort", "dem_contacts", "dem_integrate"};
   return names[static_cast<std::size_t>(p)];
 }
 

@@ -83,9 +83,7 @@ void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const 
 }
 
 // EOS then per-particle rates (continuity, momentum, signal speed).
-void compute_rates(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
-                   const particles::ParticleView& p) {
-  if (gh.on) boundary_densities(prm, gh, g, p);
+void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
   par::parallel_for_uneven(
@@ -266,10 +264,19 @@ void WcsphSolver::sort_and_rates() {
     const auto t = par::timed(par::Phase::Sort);
     store_.sort(grid_);
   }
-  const auto t = par::timed(par::Phase::Rates);
-  const auto p = store_.view();
-  detail::compute_rates(prm_, ghosts_, grid_.view(p.pos), p);
+  rates();
   fresh_ = true;
+}
+
+void WcsphSolver::rates() {
+  const auto p = store_.view();
+  const auto g = grid_.view(p.pos);
+  if (ghosts_.on) {
+    const auto t = par::timed(par::Phase::Boundary);
+    detail::boundary_densities(prm_, ghosts_, g, p);
+  }
+  const auto t = par::timed(par::Phase::Rates);
+  detail::compute_rates(prm_, g, p);
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
@@ -322,10 +329,7 @@ StepStats WcsphSolver::step(double dt_max) {
       const auto t = par::timed(par::Phase::Integrate);
       detail::symplectic_predict(p, dt, rho0);
     }
-    {
-      const auto t = par::timed(par::Phase::Rates);
-      detail::compute_rates(prm_, ghosts_, grid_.view(p.pos), p);
-    }
+    rates();
     const auto t = par::timed(par::Phase::Integrate);
     detail::symplectic_correct(p, dt, rho0);
   }

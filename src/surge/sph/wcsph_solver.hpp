@@ -73,6 +73,7 @@ public:
 
 private:
   void sort_and_rates();
+  void rates(); // (mDBC boundary densities,) EOS and rates at the current positions
   double dt_from_rates();
   int flag_removals(StepStats& s);
 
