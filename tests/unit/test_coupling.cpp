@@ -62,6 +62,15 @@ struct Coupled {
   }
 };
 
+// n entries of an execution-space array, copied to the host by a loop.
+std::vector<Vec3> read_back(const Vec3* src, int n) {
+  par::Buffer<Vec3> b(static_cast<std::size_t>(n));
+  Vec3* dst = b.data();
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) { dst[i] = src[i]; });
+  return par::download(b);
+}
+
 } // namespace
 
 // Layer k sits at r - (k + 1/2) dp with about 4 pi r_k^2 / dp^2 particles; a sphere
@@ -187,6 +196,20 @@ TEST(Coupling, BodyParticlesFollowTheirSphereRigidly) {
     EXPECT_NEAR(norm(h.pos[i] - st.pos), norm(off), 1e-6);
   }
   EXPECT_EQ(n_body, static_cast<int>(offsets.size()));
+  // mDBC ghost nodes of the body particles, as the coupling left them after moving the
+  // sphere: each is its particle mirrored through the sphere's surface, |x_g - c| =
+  // 2R - |x_b - c| on the same ray (the centre particle is its own ghost).
+  const std::uint32_t fb = s.sph.first_boundary_id();
+  std::uint32_t last = fb;
+  for (auto id : h.id) last = std::max(last, id);
+  const auto ghost = read_back(s.sph.ghost_offsets(), static_cast<int>(last - fb + 1));
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (h.kind[i] != static_cast<std::uint8_t>(Kind::Body)) continue;
+    const Vec3 rb = h.pos[i] - st.pos, rg = h.pos[i] + ghost[h.id[i] - fb] - st.pos;
+    if (norm(rb) < 1e-6f) continue;
+    EXPECT_NEAR(norm(rg), 2 * 0.03 - norm(rb), 2e-6);
+    EXPECT_NEAR(dot(rg, rb), norm(rg) * norm(rb), 1e-8);
+  }
 }
 
 // Per-sphere sums in a fixed order, per-particle writes only: identical states on 1 and
