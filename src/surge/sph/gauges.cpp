@@ -3,6 +3,10 @@
 #include <cmath>
 
 namespace surge::sph {
+namespace {
+// Where the fraction crosses 0.5 between a sample at z (fraction f0) and the one dz above (f1).
+double crossing(double z, double dz, double f0, double f1) { return z + dz * (f0 - 0.5) / (f0 - f1); }
+} // namespace
 
 Gauges::Gauges(const Case& c, const InitialState& init) {
   dz_ = c.dp / 4;
@@ -93,7 +97,7 @@ double Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) c
   if (k == pr.n_samples) return points_host_[pr.first_sample].z;
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
-    if (f1 < 0.5) return points_host_[pr.first_sample + k].z + dz_ * (f0 - 0.5) / (f0 - f1);
+    if (f1 < 0.5) return crossing(points_host_[pr.first_sample + k].z, dz_, f0, f1);
   }
   return points_host_[pr.first_sample + pr.n_samples - 1].z;
 }
@@ -107,8 +111,7 @@ double Gauges::highest_wet(const Probe& pr, const std::vector<PointSums>& sums) 
     if (f < 0.5) continue;
     const double z = points_host_[pr.first_sample + k].z;
     if (k + 1 == pr.n_samples) return z;
-    const double f1 = sums[pr.first_sample + k + 1].vw;
-    return z + dz_ * (f - 0.5) / (f - f1);
+    return crossing(z, dz_, f, sums[pr.first_sample + k + 1].vw);
   }
   return points_host_[pr.first_sample].z;
 }

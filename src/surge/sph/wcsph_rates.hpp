@@ -30,6 +30,10 @@ struct WcsphParams {
   Vec3 gravity{};
 };
 
+// A boundary (wall or body) particle's density never drops below rho0: a boundary
+// particle must not pull the fluid (one rule for every integrator and for mDBC).
+[[nodiscard]] SURGE_HD inline Real boundary_density(Real rho, Real rho0) { return rho < rho0 ? rho0 : rho; }
+
 struct Rates {
   Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;

@@ -78,7 +78,7 @@ void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const 
         if (p.kind[i] == fluid) return;
         const Vec3 xb = p.pos[i];
         const Real rho = mdbc_density(prm, g, p, xb, xb + gh.offset[p.id[i] - gh.first_id], p.rho[i]);
-        p.rho[i] = rho < rho0 ? rho0 : rho; // boundary particles must not pull the fluid
+        p.rho[i] = boundary_density(rho, rho0);
       });
 }
 
@@ -153,8 +153,8 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
           p.pos[i] += v_now * dt + a * (dt * dt / 2);
           p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
           p.vel_prev[i] = v_now;
-        } else if (rho_new < rho0) {
-          rho_new = rho0; // boundary particles must not pull the fluid
+        } else {
+          rho_new = boundary_density(rho_new, rho0);
         }
         p.rho_prev[i] = rho_now;
         p.rho[i] = rho_new;
@@ -174,8 +174,8 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
           p.vel_prev[i] = p.vel[i];
           p.pos[i] += p.vel[i] * half;
           p.vel[i] += p.acc[i] * half;
-        } else if (rho < rho0) {
-          rho = rho0;
+        } else {
+          rho = boundary_density(rho, rho0);
         }
         p.rho[i] = rho;
       });
@@ -193,8 +193,8 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
           const Vec3 v1 = v0 + p.acc[i] * dt;
           p.vel[i] = v1;
           p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
-        } else if (rho < rho0) {
-          rho = rho0;
+        } else {
+          rho = boundary_density(rho, rho0);
         }
         p.rho[i] = rho;
       });
