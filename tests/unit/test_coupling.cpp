@@ -17,10 +17,10 @@ using namespace surge;
 namespace {
 
 // A blob of water with a sphere inside moving through it; no gravity, no walls.
-std::string blob_case(const std::string& integrator) {
+std::string blob_case(const std::string& integrator, const std::string& boundary = "dynamic") {
   return "name: blob\ndp: 0.01\ngravity: [0, 0, 0]\ndomain: {min: [0, 0, 0], max: [0.3, 0.3, 0.3]}\n"
          "sph: {c0: 10, hmax: 0.2, integrator: " +
-         integrator +
+         integrator + ", boundary: " + boundary +
          "}\n"
          "fluid:\n  - box: {min: [0.05, 0.05, 0.05], max: [0.25, 0.25, 0.25]}\n"
          "dem:\n  materials: [{name: s, density: 2500, E: 1.0e7}]\n"
@@ -168,7 +168,7 @@ TEST(Coupling, MomentumOfWaterAndSpheresIsConserved) {
 // their distance to the centre, after the sphere has moved and turned. Tolerance 1e-6 m
 // (a few float ulps: this file and the library may contract multiply-adds differently).
 TEST(Coupling, BodyParticlesFollowTheirSphereRigidly) {
-  Coupled s(blob_case("verlet"));
+  Coupled s(blob_case("verlet", "mdbc"));
   for (int k = 0; k < 20; ++k) s.step();
   particles::HostParticles h;
   s.sph.download(h);

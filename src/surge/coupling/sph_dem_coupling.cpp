@@ -34,8 +34,8 @@ void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint
       });
 }
 
-// Body particles from their spheres' states; their mDBC ghost offsets turn with them
-// (ghost_out[id - first_boundary], whether or not mDBC is on: it costs one store).
+// Body particles from their spheres' states; with mDBC (ghost_out not null) their ghost
+// offsets turn with them (ghost_out[id - first_boundary]).
 void place(const particles::ParticleView& p, std::uint32_t first, const Vec3* offset, const std::uint32_t* owner,
            const dem::RigidState* state, const Vec3* ghost0, Vec3* ghost_out, std::uint32_t first_boundary) {
   const auto body = static_cast<std::uint8_t>(Kind::Body);
@@ -47,7 +47,7 @@ void place(const particles::ParticleView& p, std::uint32_t first, const Vec3* of
         const dem::RigidPoint r = dem::rigid_point(s, offset[b]);
         p.pos[i] = r.pos;
         p.vel[i] = r.vel;
-        ghost_out[p.id[i] - first_boundary] = dem::rotate(s.q, ghost0[b]);
+        if (ghost_out) ghost_out[p.id[i] - first_boundary] = dem::rotate(s.q, ghost0[b]);
       });
 }
 } // namespace detail

@@ -253,8 +253,8 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(init.particles);
-  par::upload(ghost_, init.boundary_ghost);
   ghosts_.on = c.sph.boundary == "mdbc";
+  if (ghosts_.on) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
   ghosts_.first_id = init.first_boundary_id;
   ghosts_.offset = ghost_.data();
 }

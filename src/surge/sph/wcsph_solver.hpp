@@ -55,12 +55,12 @@ public:
 
   [[nodiscard]] const WcsphParams& params() const { return prm_; }
   // Ghost offsets of the boundary particles (execution space), by id - first_boundary_id():
-  // the coupling rewrites those of body particles as their spheres turn.
+  // the coupling rewrites those of body particles as their spheres turn. Null unless mdbc.
   [[nodiscard]] Vec3* ghost_offsets() { return ghost_.data(); }
   [[nodiscard]] std::uint32_t first_boundary_id() const { return ghosts_.first_id; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
-  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes(); }
+  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes() + ghost_.bytes(); }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
   void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
