@@ -3,7 +3,8 @@
 # The CUDA toolkit is not installed here (it is optional; see README).
 set -euo pipefail
 pkgs=(build-essential cmake git libyaml-cpp-dev libthrust-dev libgtest-dev googletest
-      python3 python3-numpy python3-matplotlib python3-vtk9 clang clang-format clang-tidy libomp-dev libclang-rt-dev)
+      python3 python3-numpy python3-matplotlib python3-vtk9 clang clang-format clang-tidy libomp-dev libclang-rt-dev
+      openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

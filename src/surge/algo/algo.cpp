@@ -14,19 +14,22 @@ namespace surge::algo {
 #if defined(SURGE_BACKEND_CUDA)
 namespace {
 // Scratch of the radix sort, grown to the largest sort seen and kept.
+template <class K>
 struct SortScratch {
-  par::Buffer<std::uint32_t> keys, values;
+  par::Buffer<K> keys;
+  par::Buffer<std::uint32_t> values;
   par::Buffer<unsigned char> temp;
 };
-SortScratch& scratch() {
-  static auto* s = new SortScratch; // never freed: device memory goes with the process
+template <class K>
+SortScratch<K>& scratch() {
+  static auto* s = new SortScratch<K>; // never freed: device memory goes with the process
   return *s;
 }
-} // namespace
 
-void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t max_key) {
+template <class K>
+void radix_sort(K* keys, std::uint32_t* values, int n, K max_key) {
   if (n <= 1) return;
-  SortScratch& s = scratch();
+  SortScratch<K>& s = scratch<K>();
   const auto un = static_cast<std::size_t>(n);
   if (s.keys.size() < un) {
     s.keys.resize(un);
@@ -35,24 +38,42 @@ void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_
   const int end_bit = std::max(1, static_cast<int>(std::bit_width(max_key)));
   // Double buffers: CUB ping-pongs between the caller's arrays and the scratch, so its
   // temporary storage stays small (no third copy of keys and values).
-  cub::DoubleBuffer<std::uint32_t> k(keys, s.keys.data()), v(values, s.values.data());
+  cub::DoubleBuffer<K> k(keys, s.keys.data());
+  cub::DoubleBuffer<std::uint32_t> v(values, s.values.data());
   std::size_t temp_bytes = 0;
   par::check_cuda(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, k, v, n, 0, end_bit), "radix sort size");
   if (s.temp.size() < temp_bytes) s.temp.resize(temp_bytes);
   par::check_cuda(cub::DeviceRadixSort::SortPairs(s.temp.data(), temp_bytes, k, v, n, 0, end_bit), "radix sort");
   // The callers own their arrays: copy back when the result ended in the scratch.
   if (k.Current() != keys)
-    par::check_cuda(cudaMemcpyAsync(keys, k.Current(), un * sizeof(std::uint32_t), cudaMemcpyDeviceToDevice),
-                    "radix sort copy");
+    par::check_cuda(cudaMemcpyAsync(keys, k.Current(), un * sizeof(K), cudaMemcpyDeviceToDevice), "radix sort copy");
   if (v.Current() != values)
     par::check_cuda(cudaMemcpyAsync(values, v.Current(), un * sizeof(std::uint32_t), cudaMemcpyDeviceToDevice),
                     "radix sort copy");
 }
+} // namespace
+
+void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t max_key) {
+  radix_sort(keys, values, n, max_key);
+}
+void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t max_key) {
+  radix_sort(keys, values, n, max_key);
+}
 #else
-void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t /*max_key*/) {
+namespace {
+template <class K>
+void thrust_sort(K* keys, std::uint32_t* values, int n) {
   if (n <= 1) return;
   const par::devcheck::Open access;
   thrust::stable_sort_by_key(thrust::device, keys, keys + n, values);
+}
+} // namespace
+
+void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t /*max_key*/) {
+  thrust_sort(keys, values, n);
+}
+void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t /*max_key*/) {
+  thrust_sort(keys, values, n);
 }
 #endif
 

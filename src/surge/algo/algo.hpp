@@ -11,6 +11,9 @@ namespace surge::algo {
 // sort only looks at the bits max_key needs). The GPU path keeps its scratch between
 // calls: no allocation once the particle count has been reached.
 void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_t max_key);
+// The same with 64-bit keys: (cell key << 32 | particle id) orders each cell's particles
+// by id, an order that does not depend on how the particles were stored before.
+void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t max_key);
 // values[i] = i
 void iota(std::uint32_t* values, int n);
 

@@ -1,6 +1,7 @@
 // The surge command-line program.
 #include "surge/core/error.hpp"
 #include "surge/core/version.hpp"
+#include "surge/domain/comm.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/par/parallel.hpp"
 #include "surge/sim/simulation.hpp"
@@ -39,13 +40,12 @@ exit codes: 0 done, 1 internal error, 2 bad input, 3 run diverged, 130 interrupt
 )";
 
 int fail_usage(const std::string& msg) {
-  std::fprintf(stderr, "error: %s\n(run 'surge --help' for usage)\n", msg.c_str());
+  if (surge::domain::comm::rank() == 0) std::fprintf(stderr, "error: %s\n(run 'surge --help' for usage)\n", msg.c_str());
   return 2;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
+// The command, on every process of a distributed run (mpirun -n N surge run ...).
+int surge_main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) return fail_usage("no command given");
   if (args[0] == "--help" || args[0] == "-h") {
@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
   }
   try {
     const surge::Case c = surge::io::read_case(case_path, sets);
-    if (cmd == "check") return surge::sim::check(c);
+    const bool root = surge::domain::comm::rank() == 0;
+    if (cmd == "check") return root ? surge::sim::check(c) : 0;
     surge::par::set_threads(threads);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
@@ -110,14 +111,27 @@ int main(int argc, char** argv) {
     opt.out_dir = out_dir.empty() ? "out/" + c.name : out_dir;
     opt.stop = &g_stop;
     opt.progress_tty = isatty(STDERR_FILENO) != 0;
-    opt.quiet = quiet;
+    opt.quiet = quiet || !root;
     opt.restart = cmd == "restart";
     return surge::sim::run(c, opt);
   } catch (const surge::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    // Input is read alike by every process, so every process stops here with the same
+    // error: rank 0 says it.
+    if (surge::domain::comm::rank() == 0) std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    // Possibly seen by one process only: end them all rather than leave any waiting.
+    std::fprintf(stderr, "error (process %d): %s\n", surge::domain::comm::rank(), e.what());
+    if (surge::domain::comm::size() > 1) surge::domain::comm::abort(1);
     return 1;
   }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  surge::domain::comm::init(argc, argv);
+  const int code = surge_main(argc, argv);
+  surge::domain::comm::finalize();
+  return code;
 }

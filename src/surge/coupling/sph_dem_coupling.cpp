@@ -7,27 +7,28 @@ namespace surge::coupling {
 namespace detail {
 // Free functions: nvcc's extended lambdas may not live in private member functions.
 
-// slot[id - first] = i for every body particle i of the SPH arrays (ids are unique, so
-// each particle writes its own entry).
-void index_bodies(const particles::ParticleView& p, std::uint32_t first, std::uint32_t* slot) {
+// acc[id - first], pos[id - first] of every body particle this process owns (ids are
+// unique, so each particle writes its own entry; the rest stay as they were, zero).
+void collect_bodies(const particles::ParticleView& p, std::uint32_t first, Vec3* acc, Vec3* pos) {
   const auto body = static_cast<std::uint8_t>(Kind::Body);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
-        if (p.kind[i] == body) slot[p.id[i] - first] = static_cast<std::uint32_t>(i);
+        if (p.kind[i] != body || !p.owned(i)) return;
+        acc[p.id[i] - first] = p.acc[i];
+        pos[p.id[i] - first] = p.pos[i];
       });
 }
 
-void sum_per_sphere(const particles::ParticleView& p, Real mass, const std::uint32_t* start, const std::uint32_t* slot,
+void sum_per_sphere(const Vec3* acc, const Vec3* pos, Real mass, const std::uint32_t* start,
                     const dem::RigidState* state, int n_spheres, Vec3* force, Vec3* moment) {
   par::parallel_for(
       n_spheres, SURGE_LAMBDA(int k) {
         Vec3 f{}, m{};
         const Vec3 xk = state[k].pos;
         for (std::uint32_t b = start[k]; b < start[k + 1]; ++b) {
-          const std::uint32_t i = slot[b];
-          const Vec3 fb = p.acc[i] * mass; // body accelerations carry no gravity (wcsph_rates)
+          const Vec3 fb = acc[b] * mass; // body accelerations carry no gravity (wcsph_rates)
           f += fb;
-          m += cross(p.pos[i] - xk, fb);
+          m += cross(pos[b] - xk, fb);
         }
         force[k] = f;
         moment[k] = m;
@@ -61,7 +62,8 @@ SphDemCoupling::SphDemCoupling(const BodyLayout& layout, int n_spheres, Real dt_
   par::upload(ghost_, layout.ghost);
   par::upload(owner_, layout.owner);
   par::upload(start_, layout.start);
-  slot_.resize(n_body_);
+  body_acc_.resize(n_body_);
+  body_pos_.resize(n_body_);
 }
 
 void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
@@ -71,12 +73,23 @@ void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
 
 void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto t = par::timed(par::Phase::Coupling);
-  const auto p = sph.view();
-  detail::index_bodies(p, first_id_, slot_.data());
+  par::fill(body_acc_, Vec3{});
+  par::fill(body_pos_, Vec3{});
+  detail::collect_bodies(sph.view(), first_id_, body_acc_.data(), body_pos_.data());
+  if (dist_.distributed()) {
+    // Every body particle's acceleration and position from the process that owns it: each
+    // sphere then sums the same values in the same order as one process would.
+    for (auto* b : {&body_acc_, &body_pos_}) {
+      std::vector<Vec3> h;
+      par::download(h, *b, b->size());
+      dist_.sum(reinterpret_cast<Real*>(h.data()), 3 * h.size());
+      par::upload(*b, h);
+    }
+  }
   dem.rigid_states(state_);
   // Written straight into the DEM's held external force and moment.
-  detail::sum_per_sphere(p, sph.params().mass, start_.data(), slot_.data(), state_.data(), n_spheres_,
-                         dem.external_force().data(), dem.external_torque().data());
+  detail::sum_per_sphere(body_acc_.data(), body_pos_.data(), sph.params().mass, start_.data(), state_.data(),
+                         n_spheres_, dem.external_force().data(), dem.external_torque().data());
 }
 
 void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {

@@ -23,7 +23,7 @@ public:
   // Fluid force and moment on every sphere from the body particles' accelerations of the
   // last rate evaluation (Eq. 23-24 without the sphere's own weight, which the DEM adds):
   //   F_k = sum_b m_b (a_b - g),  M_k = sum_b m_b (a_b - g) x (r_b - x_k).
-  // Each sphere sums its own body particles in a fixed order: no atomics, and the same
+  // Each sphere sums its own body particles in body-index order: no atomics, and the same
   // result on any number of threads. The result is the DEM's held external force and
   // moment (DemSolver::external_forces / external_torques read it back).
   void reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem);
@@ -33,6 +33,10 @@ public:
   // reduce_forces, DEM sub-steps over dt, place_bodies. Returns the number of sub-steps.
   int after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt);
 
+  // A distributed run: each process holds some body particles; their accelerations and
+  // positions are combined before the per-sphere sums, and every process then advances
+  // the same DEM with the same force (see ARCHITECTURE.md, distributed runs).
+  void set_distribution(const Distribution& d) { dist_ = d; }
   [[nodiscard]] std::size_t n_body() const { return n_body_; }
   [[nodiscard]] Real dt_dem() const { return dt_dem_; }
 
@@ -43,7 +47,9 @@ private:
   int n_spheres_ = 0;
   Real dt_dem_ = 0;
   par::Buffer<Vec3> offset_, ghost_;                // body frame: particle offsets, mDBC ghost offsets
-  par::Buffer<std::uint32_t> owner_, start_, slot_; // slot_: body index -> current SPH array index
+  par::Buffer<std::uint32_t> owner_, start_;
+  par::Buffer<Vec3> body_acc_, body_pos_; // by body index: the last rates' acceleration and position
+  Distribution dist_;
   par::Buffer<dem::RigidState> state_;
 };
 

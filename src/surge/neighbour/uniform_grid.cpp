@@ -29,7 +29,7 @@ GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius, int span) {
   return s;
 }
 
-void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
+void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n, const std::uint32_t* id) {
   keys_.resize(static_cast<std::size_t>(n));
   perm_.resize(static_cast<std::size_t>(n));
   std::uint32_t* keys = keys_.data();
@@ -41,7 +41,17 @@ void UniformGrid::sort(const Vec3* pos, const std::uint8_t* cls, int n) {
         keys[i] = c >= 2 ? sentinel : 2 * s.key(pos[i]) + c;
       });
   algo::iota(perm_.data(), n);
-  algo::sort_by_key(keys, perm_.data(), n, sentinel);
+  if (!id) {
+    algo::sort_by_key(keys, perm_.data(), n, sentinel);
+    return;
+  }
+  keys64_.resize(static_cast<std::size_t>(n));
+  std::uint64_t* k64 = keys64_.data();
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) { k64[i] = static_cast<std::uint64_t>(keys[i]) << 32 | id[i]; });
+  algo::sort_by_key(k64, perm_.data(), n, static_cast<std::uint64_t>(sentinel) << 32 | 0xffffffffULL);
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) { keys[i] = static_cast<std::uint32_t>(k64[i] >> 32); });
 }
 
 void UniformGrid::build_cell_start(int n) {

@@ -92,8 +92,11 @@ public:
 
   // keys[i] = 2 cell(pos[i]) + cls[i] (cls 0: fluid, 1: boundary), or 2 cells() for
   // cls[i] == 2 (dead), then stable sort. permutation()[i] is the old index of new i.
-  // cls may be null (all class 0).
-  void sort(const Vec3* pos, const std::uint8_t* cls, int n);
+  // cls may be null (all class 0). With `id` (not null) each cell's particles are ordered
+  // by id rather than kept in their previous order: neighbour sums then visit the same
+  // particles in the same order however the particles were stored or distributed
+  // (what makes a distributed run equal to one process, bit for bit).
+  void sort(const Vec3* pos, const std::uint8_t* cls, int n, const std::uint32_t* id = nullptr);
   // Builds cell_start from the sorted keys (no host synchronisation).
   void build_cell_start(int n);
   // The number of live (class < 2) particles after build_cell_start: a 4-byte copy to
@@ -102,11 +105,14 @@ public:
 
   [[nodiscard]] const std::uint32_t* permutation() const { return perm_.data(); }
   [[nodiscard]] GridView view(const Vec3* sorted_pos) const { return {spec_, cell_start_.data(), sorted_pos}; }
-  [[nodiscard]] std::size_t bytes() const { return keys_.bytes() + perm_.bytes() + cell_start_.bytes(); }
+  [[nodiscard]] std::size_t bytes() const {
+    return keys_.bytes() + keys64_.bytes() + perm_.bytes() + cell_start_.bytes();
+  }
 
 private:
   GridSpec spec_;
   par::Buffer<std::uint32_t> keys_, perm_, cell_start_;
+  par::Buffer<std::uint64_t> keys64_; // (key << 32 | id), only for sorts by id
 };
 
 } // namespace surge::neighbour

@@ -19,6 +19,14 @@ void ParticleStore::upload(const HostParticles& h) {
   par::upload(press_, h.press);
   par::upload(kind_, h.kind);
   par::upload(id_, h.id);
+  if (distributed_) {
+    if (h.halo.size() == n)
+      par::upload(halo_, h.halo);
+    else {
+      halo_.resize(n);
+      par::fill(halo_, std::uint8_t{0});
+    }
+  }
   acc_.resize(n);
   drho_.resize(n);
   vsig_.resize(n);
@@ -43,6 +51,10 @@ void ParticleStore::download(HostParticles& h, bool history) const {
     h.vel_prev.clear();
     h.rho_prev.clear();
   }
+  if (distributed_)
+    par::download(h.halo, halo_, n);
+  else
+    h.halo.clear();
 }
 
 void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<std::size_t>(n_)); }
@@ -50,7 +62,7 @@ void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<st
 ParticleView ParticleStore::view() {
   return {n_,           pos_.data(),  vel_.data(),      vel_prev_.data(), pos_prev_.data(),
           acc_.data(),  rho_.data(),  rho_prev_.data(), drho_.data(),     press_.data(),
-          vsig_.data(), kind_.data(), id_.data()};
+          vsig_.data(), kind_.data(), id_.data(),     distributed_ ? halo_.data() : nullptr};
 }
 
 template <class T>
@@ -66,7 +78,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   // Sort class: fluid first in each cell, then boundary particles; removed ones last.
   par::parallel_for(
       n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
-  grid.sort(pos_.data(), dead, n_);
+  grid.sort(pos_.data(), dead, n_, distributed_ ? id_.data() : nullptr);
   const std::uint32_t* perm = grid.permutation();
   // acc, drho, press and vsig are recomputed after every sort, and pos_prev is scratch
   // within one symplectic step: none of them is carried through the sort, so acc and
@@ -79,6 +91,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   reorder(rho_prev_, drho_, perm);
   reorder(kind_, cls_, perm);
   reorder(id_, tmpu_, perm);
+  if (distributed_) reorder(halo_, cls_, perm);
   grid.build_cell_start(n_);
   // The host knows how many were flagged, so the GPU need not report the live count.
   // The CPU builds, where the check costs nothing, verify it on every sort.
@@ -95,6 +108,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   for (auto* b : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b->truncate(static_cast<std::size_t>(live));
   kind_.truncate(static_cast<std::size_t>(live));
   id_.truncate(static_cast<std::size_t>(live));
+  if (distributed_) halo_.truncate(static_cast<std::size_t>(live));
   return dropped;
 }
 
@@ -102,7 +116,7 @@ std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
   for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b += x->bytes();
   for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b += x->bytes();
-  return b + kind_.bytes() + cls_.bytes() + id_.bytes() + tmpu_.bytes();
+  return b + kind_.bytes() + cls_.bytes() + halo_.bytes() + id_.bytes() + tmpu_.bytes();
 }
 
 } // namespace surge::particles

@@ -18,6 +18,8 @@ struct HostParticles {
   // Time-integration history (Verlet's v^{n-1}, rho^{n-1}); filled for checkpoints only.
   std::vector<Vec3> vel_prev;
   std::vector<Real> rho_prev;
+  // Distributed runs: 1 for a halo copy of a particle another process owns (empty: all owned).
+  std::vector<std::uint8_t> halo;
   [[nodiscard]] std::size_t size() const { return pos.size(); }
   void push(const Vec3& p, const Vec3& v, Real density, Kind k, std::uint32_t ident) {
     pos.push_back(p);
@@ -44,6 +46,10 @@ struct ParticleView {
   Real* vsig = nullptr; // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
   std::uint8_t* kind = nullptr;
   std::uint32_t* id = nullptr;
+  // Distributed runs: halo[i] != 0 for a copy of a particle another process owns, whose
+  // state is this process's only to read (null: every particle is owned).
+  const std::uint8_t* halo = nullptr;
+  [[nodiscard]] SURGE_HD bool owned(int i) const { return !halo || !halo[i]; }
 };
 
 class ParticleStore {
@@ -51,6 +57,9 @@ public:
   // Replaces the contents with host data; without vel_prev / rho_prev the
   // current values also become v^{n-1} and rho^{n-1}.
   void upload(const HostParticles& h);
+  // A distributed store carries the halo flag of every particle and sorts each cell by
+  // particle id (UniformGrid::sort), so that its sums do not depend on the distribution.
+  void set_distributed(bool on) { distributed_ = on; }
   // Copies the current state to the host (pressure included); with `history`
   // also vel_prev and rho_prev (for checkpoints).
   void download(HostParticles& h, bool history = false) const;
@@ -75,7 +84,8 @@ private:
   int removed_pending_ = 0; // marked Removed since the last sort
   par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
   par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
-  par::Buffer<std::uint8_t> kind_, cls_;
+  bool distributed_ = false;
+  par::Buffer<std::uint8_t> kind_, cls_, halo_;
   par::Buffer<std::uint32_t> id_;
   par::Buffer<std::uint32_t> tmpu_;
 };

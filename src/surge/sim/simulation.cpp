@@ -9,6 +9,7 @@
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
+#include "surge/sim/distributed_run.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
@@ -47,13 +48,14 @@ struct ExtraCounts {
 
 std::string summary_json(const Case& c, const sph::InitialState& init, const ExtraCounts& extra,
                          const std::string& status, int code, long steps, double t, double wall, const Totals& tot,
-                         int n_now, double rss, const std::string& message) {
+                         long n_now, double rss, const std::string& distributed, const std::string& message) {
   std::ostringstream j;
   j.precision(10);
   const double n_all = static_cast<double>(init.n_fluid + init.n_wall + extra.body);
   const std::string msg = json_escape(message);
   j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
     << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
+    << "  \"distributed\": " << distributed << ",\n"
     << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
     << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": " << extra.body
     << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
@@ -177,7 +179,8 @@ int check(const Case& c) {
 }
 
 int run(const Case& c, const RunOptions& opt) {
-  if (c.dem.active() && !c.coupled()) return run_dem(c, opt);
+  // DEM-only cases are not distributed: rank 0 runs them.
+  if (c.dem.active() && !c.coupled()) return DistributedRun::root() ? run_dem(c, opt) : 0;
   const auto wall0 = Clock::now();
   // Everything that can fail on input happens before the output folder is touched.
   sph::InitialState init = sph::build_initial_state(c);
@@ -186,6 +189,10 @@ int run(const Case& c, const RunOptions& opt) {
   sph::WcsphSolver solver(c, init);
   sph::Gauges gauges(c, init);
   const ExtraCounts extra{cp ? cp->coupling->n_body() : 0, cp ? cp->setup.spheres.size() : 0};
+  // Built with MPI: slabs of particles, one per process; only rank 0 writes files and prints.
+  DistributedRun dist(c, solver, cp ? cp->coupling.get() : nullptr);
+  const bool root = DistributedRun::root();
+  const bool quiet = opt.quiet || !root;
 
   namespace fs = std::filesystem;
   const fs::path out(opt.out_dir);
@@ -210,13 +217,15 @@ int run(const Case& c, const RunOptions& opt) {
       }
     }
   }
-  fs::create_directories(out / "particles");
-  io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
+  if (root) {
+    fs::create_directories(out / "particles");
+    io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
+  }
   io::PvdCollection walls_pvd((out / "walls.pvd").string());
   io::PvdCollection fluid_pvd((out / "fluid.pvd").string());
   std::optional<io::PvdCollection> spheres_pvd;
   if (cp) spheres_pvd.emplace((out / "spheres.pvd").string());
-  if (!opt.restart) {
+  if (!opt.restart && root) {
     io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
     walls_pvd.add(0.0, "particles/walls_0000.vtp");
   }
@@ -230,11 +239,16 @@ int run(const Case& c, const RunOptions& opt) {
   std::vector<double> frame_times;
   auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    io::write_file_atomic((out / "summary.json").string(),
-                          summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, solver.size(),
-                                       peak_rss_bytes(), msg));
+    // Collective: every process takes part, rank 0 writes (RSS summed over processes).
+    const long n_now = dist.owned_particles();
+    const double rss = dist.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
+    if (root)
+      io::write_file_atomic((out / "summary.json").string(),
+                            summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, n_now, rss,
+                                         dist.summary_json(), msg));
   };
   auto sample_gauges = [&] {
+    dist.sync();
     std::vector<dem::Sphere> sp;
     std::vector<Vec3> ff, fm;
     if (cp) {
@@ -245,7 +259,7 @@ int run(const Case& c, const RunOptions& opt) {
     auto v = gauges.sample(solver, [&](const GaugeSpec& g) {
       return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
                                           : sphere_gauge_value(g, sp, ff, fm, init.origin);
-    });
+    }, dist.distribution());
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };
@@ -254,7 +268,7 @@ int run(const Case& c, const RunOptions& opt) {
   // The gauge rows so far, the checkpoint and the summary: with every output, and between
   // outputs when a wall-clock checkpoint is due.
   auto save_progress = [&] {
-    io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
+    if (root) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
     rows_written = rows.size();
     io::Checkpoint k;
     k.time = t;
@@ -267,20 +281,23 @@ int run(const Case& c, const RunOptions& opt) {
     k.removed_domain = tot.removed_domain;
     k.removed_density = tot.removed_density;
     k.non_finite = tot.non_finite;
-    solver.download(k.particles, true);
+    dist.gather(k.particles, true);
     if (cp) k.dem_state = cp->dem->save();
-    io::write_checkpoint((out / "checkpoint.bin").string(), k);
+    if (root) io::write_checkpoint((out / "checkpoint.bin").string(), k);
     wall_checkpoints.written();
     write_summary("running", 0, "");
   };
   auto write_output = [&] {
+    dist.sync();
     solver.refresh();
-    solver.download(host);
+    dist.gather(host, false);
     char name[64];
     std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
-    io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
-    fluid_pvd.add(t, std::string("particles/") + name);
-    if (cp) {
+    if (root) {
+      io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
+      fluid_pvd.add(t, std::string("particles/") + name);
+    }
+    if (cp && root) {
       std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
       io::write_spheres_vtp((out / "particles" / name).string(), sphere_frame(*cp->dem), init.origin);
       spheres_pvd->add(t, std::string("particles/") + name);
@@ -288,7 +305,7 @@ int run(const Case& c, const RunOptions& opt) {
     frame_times.push_back(t);
     ++frame;
     save_progress();
-    if (since_output.removed() > 0 && !opt.quiet)
+    if (since_output.removed() > 0 && !quiet)
       std::fprintf(stderr,
                    "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
                    "out of range, %ld non-finite) within x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m\n",
@@ -327,12 +344,14 @@ int run(const Case& c, const RunOptions& opt) {
       spheres_pvd->restore(entries);
     }
     solver.restore(ck.particles, ck.steps);
+    dist.start(std::move(ck.particles)); // a checkpoint of any number of processes
     // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
     // placed again are the checkpoint's, bit for bit).
     if (cp) cp->coupling->place_bodies(solver, *cp->dem);
     ck.particles = {};
-    if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
+    if (!quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
   } else {
+    dist.start(init.particles);
     if (cp) cp->coupling->reduce_forces(solver, *cp->dem); // the fluid force at t = 0, for the gauges
     sample_gauges();
     write_output();
@@ -345,13 +364,18 @@ int run(const Case& c, const RunOptions& opt) {
   const long steps0 = solver.step_count();
   const double t0 = t;
   std::string failure;
+  bool stop = false; // Ctrl-C, agreed by every process
   while (t < c.time.end - eps) {
-    if (opt.stop && *opt.stop) break;
+    if (stop) break;
     if (c.time.max_steps > 0 && solver.step_count() >= c.time.max_steps) break;
     const double dt_max = std::min({next_out, next_gauge, c.time.end}) - t;
-    const sph::StepStats s = solver.step(dt_max);
+    dist.sync();
+    sph::StepStats s = solver.step(dt_max);
+    dist.stepped();
     if (cp) cp->coupling->after_fluid_step(solver, *cp->dem, s.dt);
     t += s.dt;
+    stop = opt.stop && *opt.stop;
+    dist.combine(s, stop);
     for (Totals* x : {&tot, &since_output}) {
       x->removed_domain += s.removed_domain;
       x->removed_density += s.removed_density;
@@ -398,7 +422,7 @@ int run(const Case& c, const RunOptions& opt) {
     }
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_report).count();
-    if (!opt.quiet && (opt.progress_tty ? since > 0.5 : since > opt.report_every_s)) {
+    if (!quiet && (opt.progress_tty ? since > 0.5 : since > opt.report_every_s)) {
       last_report = now;
       const double el = std::chrono::duration<double>(now - loop0).count();
       // Rates over this session only (a restart starts the clock at its checkpoint).
@@ -409,19 +433,20 @@ int run(const Case& c, const RunOptions& opt) {
                    opt.progress_tty ? "   " : "\n");
     }
   }
-  if (opt.progress_tty && !opt.quiet) std::fprintf(stderr, "\n");
+  if (opt.progress_tty && !quiet) std::fprintf(stderr, "\n");
   if (!failure.empty()) {
     // Outputs written so far are the last good state; nothing after it is written.
     write_summary("diverged", 3, failure);
-    std::fprintf(stderr, "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
+    if (root)
+      std::fprintf(stderr, "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
                  failure.c_str(), frame > 0 ? (frame - 1) * c.time.output_every : 0.0, out.string().c_str());
     return 3;
   }
-  const bool interrupted = opt.stop && *opt.stop;
+  const bool interrupted = stop;
   if (rows.size() > rows_written || interrupted) write_output();
   write_summary(interrupted ? "interrupted" : "completed", interrupted ? 130 : 0,
                 interrupted ? "stopped by the user" : "");
-  if (!opt.quiet) {
+  if (!quiet) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
     const double n = static_cast<double>(init.n_fluid + init.n_wall);
     std::fprintf(stderr,

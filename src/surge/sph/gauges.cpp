@@ -8,6 +8,17 @@ namespace {
 double crossing(double z, double dz, double f0, double f1) { return z + dz * (f0 - 0.5) / (f0 - f1); }
 } // namespace
 
+namespace detail {
+// out[id - id0] = a of each owned particle with id in [id0, id1) (free function: nvcc's
+// extended lambdas may not live in private member functions).
+void wall_accelerations(const particles::ParticleView& p, std::uint32_t id0, std::uint32_t id1, Vec3* out) {
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.id[i] >= id0 && p.id[i] < id1 && p.owned(i)) out[p.id[i] - id0] = p.acc[i];
+      });
+}
+} // namespace detail
+
 Gauges::Gauges(const Case& c, const InitialState& init) {
   dz_ = c.dp / 4;
   const Vec3d o = init.origin;
@@ -36,7 +47,8 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   sums_.resize(points_host_.size());
 }
 
-std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value) {
+std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value,
+                                   const Distribution& dist) {
   solver.refresh();
   auto p = solver.view();
   const auto g = solver.grid_view();
@@ -47,6 +59,11 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
       static_cast<int>(points_host_.size()), SURGE_LAMBDA(int k) { out[k] = fluid_sums(prm, g, p, pts[k]); });
   std::vector<PointSums> sums;
   par::download(sums, sums_, sums_.size());
+  if (dist.distributed()) {
+    for (std::size_t k = 0; k < sums.size(); ++k)
+      if (!dist.owns(points_host_[k])) sums[k] = PointSums{};
+    dist.sum(reinterpret_cast<Real*>(sums.data()), 6 * sums.size());
+  }
 
   std::vector<double> values;
   for (const auto& pr : probes_) {
@@ -69,17 +86,27 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
     } else if (spec.type == GaugeType::Sphere || spec.type == GaugeType::DemWall) {
       v = sphere_value ? sphere_value(spec) : 0.0;
     } else {
-      const std::uint32_t id0 = pr.id0, id1 = pr.id1;
-      const Real m = prm.mass;
-      const Vec3 f = par::parallel_reduce(
-          p.n, Vec3{}, SURGE_LAMBDA(int i) { return (p.id[i] >= id0 && p.id[i] < id1) ? p.acc[i] * m : Vec3{}; },
-          par::Sum{});
-      const Vec3d fd(f);
+      const Vec3d fd = wall_force(solver, pr, dist);
       v = spec.component == "x" ? fd.x : spec.component == "y" ? fd.y : spec.component == "z" ? fd.z : norm(fd);
     }
     values.push_back(v);
   }
   return values;
+}
+
+// Sum of m a over the wall's particles, in id order and in double: the same value whatever
+// order the particles are stored in and however they are distributed.
+Vec3d Gauges::wall_force(WcsphSolver& solver, const Probe& pr, const Distribution& dist) {
+  const std::uint32_t id0 = pr.id0, id1 = pr.id1;
+  wall_acc_.resize(id1 - id0);
+  par::fill(wall_acc_, Vec3{});
+  detail::wall_accelerations(solver.view(), id0, id1, wall_acc_.data());
+  std::vector<Vec3> acc;
+  par::download(acc, wall_acc_, wall_acc_.size());
+  dist.sum(reinterpret_cast<Real*>(acc.data()), 3 * acc.size());
+  Vec3d f{};
+  for (const Vec3& a : acc) f += Vec3d(a);
+  return f * static_cast<double>(solver.params().mass);
 }
 
 // What a wave gauge reads: the top of the water standing on the bed. Up the line, the

@@ -17,6 +17,7 @@ struct PointSums {
   Vec3 vwv{};
   Real vw_solid = 0; // walls only; vw + vw_solid is the filled fraction
 };
+static_assert(sizeof(PointSums) == 6 * sizeof(Real), "PointSums is combined across processes as 6 Reals");
 
 [[nodiscard]] SURGE_HD inline PointSums fluid_sums(const WcsphParams& prm, const neighbour::GridView& g,
                                                    const particles::ParticleView& p, const Vec3& x) {
@@ -40,7 +41,10 @@ public:
   [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
   // One value per gauge for the solver's current state; sphere and dem_wall gauges read
   // the DEM through `sphere_value`, which the coupled run loop supplies.
-  std::vector<double> sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value = {});
+  // In a distributed run each point is read by the process that owns it and every wall
+  // particle's force by its owner: the values are those of one process, bit for bit.
+  std::vector<double> sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value = {},
+                             const Distribution& dist = {});
 
 private:
   struct Probe {
@@ -53,6 +57,8 @@ private:
   std::vector<Vec3> points_host_;
   par::Buffer<Vec3> points_;
   par::Buffer<PointSums> sums_;
+  par::Buffer<Vec3> wall_acc_; // a force gauge's wall particles' accelerations, by id - first id
+  [[nodiscard]] Vec3d wall_force(WcsphSolver& solver, const Probe& pr, const Distribution& dist);
   double dz_ = 0;
   double origin_z_ = 0;
   [[nodiscard]] double column_top(const Probe& pr, const std::vector<PointSums>& sums) const;

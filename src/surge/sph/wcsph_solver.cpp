@@ -95,32 +95,32 @@ void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const p
       });
 }
 
-// min over fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL factor.
+// min over owned fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL
+// factor; the largest Real when there is none.
 Real min_dt(const WcsphParams& prm, const particles::ParticleView& p) {
   const Real h = prm.kernel.h, c0 = prm.eos.c0;
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real inf = std::numeric_limits<Real>::max();
-  const Real dt = par::parallel_reduce(
+  return par::parallel_reduce(
       p.n, inf,
       SURGE_LAMBDA(int i) {
-        if (p.kind[i] != fluid) return inf;
+        if (p.kind[i] != fluid || !p.owned(i)) return inf;
         const Real a = norm(p.acc[i]);
         const Real dtf = a > 0 ? std::sqrt(h / a) : inf;
         const Real dtcv = h / (c0 + p.vsig[i]);
         return dtf < dtcv ? dtf : dtcv;
       },
       par::Min{});
-  return dt == inf ? h / c0 : dt;
 }
 
-// Flags fluid particles outside [lo, hi], with density outside [rmin, rmax] or non-finite
-// as Removed. Returns counts packed as non-finite << 42 | density << 21 | domain.
+// Flags owned fluid particles outside [lo, hi], with density outside [rmin, rmax] or
+// non-finite as Removed (a halo copy is its owner's to judge). Returns counts packed as non-finite << 42 | density << 21 | domain.
 long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real rmin, Real rmax) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
   return par::parallel_reduce(
       p.n, 0LL,
       SURGE_LAMBDA(int i)->long long {
-        if (p.kind[i] != fluid) return 0;
+        if (p.kind[i] != fluid || !p.owned(i)) return 0;
         const Vec3 x = p.pos[i];
         const Real rho = p.rho[i];
         const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(rho) &&
@@ -257,6 +257,30 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
   if (ghosts_.on) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
   ghosts_.first_id = init.first_boundary_id;
   ghosts_.offset = ghost_.data();
+  for (const auto& g : init.boundary_ghost) ghost_reach_ = std::fmax(ghost_reach_, static_cast<double>(norm(g)));
+}
+
+void WcsphSolver::set_distribution(const Distribution& d) {
+  dist_ = d;
+  store_.set_distributed(d.distributed());
+}
+
+double WcsphSolver::dependency_reach() const {
+  const double support = prm_.kernel.support();
+  const double per_evaluation = support + (ghosts_.on ? ghost_reach_ + support : 0.0);
+  return (symplectic_ ? 2 : 1) * per_evaluation;
+}
+
+void WcsphSolver::replace(const particles::HostParticles& h) {
+  store_.upload(h);
+  fresh_ = false;
+}
+
+int WcsphSolver::owned_count() {
+  const auto p = store_.view();
+  return par::parallel_reduce(
+      p.n, 0, SURGE_LAMBDA(int i) { return p.kind[i] != static_cast<std::uint8_t>(Kind::Removed) && p.owned(i) ? 1 : 0; },
+      par::Sum{});
 }
 
 void WcsphSolver::sort_and_rates() {
@@ -291,7 +315,10 @@ void WcsphSolver::refresh() {
 
 double WcsphSolver::dt_from_rates() {
   const auto t = par::timed(par::Phase::TimeStep);
-  return case_.sph.cfl * static_cast<double>(detail::min_dt(prm_, store_.view()));
+  const double inf = std::numeric_limits<Real>::max();
+  const double dt = dist_.minimum(static_cast<double>(detail::min_dt(prm_, store_.view())));
+  // No fluid anywhere: the sound speed's step.
+  return case_.sph.cfl * (dt == inf ? static_cast<double>(prm_.kernel.h / prm_.eos.c0) : dt);
 }
 
 double WcsphSolver::stable_dt() {

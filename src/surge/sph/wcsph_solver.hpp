@@ -1,6 +1,7 @@
 // Weakly-compressible SPH solver (SPEC §2): owns the particles and advances them.
 #pragma once
 #include "surge/core/case.hpp"
+#include "surge/core/distribution.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
 #include "surge/particles/particle_store.hpp"
@@ -54,6 +55,18 @@ public:
   double stable_dt();
 
   [[nodiscard]] const WcsphParams& params() const { return prm_; }
+  // A distributed run: the store carries halo flags and sorts by id; dt is the minimum
+  // over processes; halo particles are neither counted in dt nor flagged for removal.
+  void set_distribution(const Distribution& d);
+  // How far (local units) a particle's state after one step depends on others': the kernel
+  // support per rate evaluation, plus, with mDBC, the ghost offset and the support around the
+  // ghost. A process holding exact copies of everything within this reach of the particles
+  // it owns advances them exactly as one process would.
+  [[nodiscard]] double dependency_reach() const;
+  // Replaces the particles (a distributed run's exchange); the step count is kept.
+  void replace(const particles::HostParticles& h);
+  // Particles this process owns (all of them unless distributed).
+  [[nodiscard]] int owned_count();
   // Ghost offsets of the boundary particles (execution space), by id - first_boundary_id():
   // the coupling rewrites those of body particles as their spheres turn. Null unless mdbc.
   [[nodiscard]] Vec3* ghost_offsets() { return ghost_.data(); }
@@ -84,6 +97,8 @@ private:
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{};
+  Distribution dist_;
+  double ghost_reach_ = 0; // longest mDBC ghost offset
   bool symplectic_ = false;
   bool fresh_ = false; // rates match positions
   long steps_ = 0;

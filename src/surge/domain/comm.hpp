@@ -1,0 +1,38 @@
+// The processes of a run and the few collective operations surge needs. The only
+// interface to MPI: built without SURGE_MPI it is one process and every call is trivial.
+#pragma once
+#include "surge/core/types.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace surge::domain {
+
+namespace comm {
+// MPI_Init / MPI_Finalize when built with MPI; nothing otherwise.
+void init(int& argc, char**& argv);
+void finalize();
+[[nodiscard]] bool built_with_mpi();
+[[nodiscard]] int rank();
+[[nodiscard]] int size();
+// Ends every process of the run at once (an error that not every process saw).
+[[noreturn]] void abort(int code);
+void barrier();
+
+// Element-wise over processes, in place; every process gets the result.
+void sum(double* x, std::size_t n);
+void sum(Real* x, std::size_t n);
+void min(double* x, std::size_t n);
+void max(double* x, std::size_t n);
+[[nodiscard]] double min(double x);
+[[nodiscard]] double max(double x);
+[[nodiscard]] double sum(double x);
+// Rank 0's bytes to every process.
+void broadcast(std::vector<char>& bytes);
+// send[r]: bytes for process r; returns what each process sent this one, by sender.
+[[nodiscard]] std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send);
+// Every process's bytes, concatenated in rank order, on rank 0 (empty elsewhere).
+[[nodiscard]] std::vector<char> gather(const std::vector<char>& mine);
+} // namespace comm
+
+} // namespace surge::domain

@@ -1,0 +1,240 @@
+#include "surge/domain/slab_decomposition.hpp"
+
+#include "surge/domain/comm.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace surge::domain {
+namespace {
+
+// One particle as it travels between processes: the state a step needs (rates are
+// recomputed after every exchange), 56 bytes.
+struct Record {
+  Vec3 pos, vel, vel_prev;
+  Real rho, rho_prev, press;
+  std::uint32_t id;
+  std::uint8_t kind, halo;
+};
+
+void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i) {
+  const Record r{h.pos[i],   h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i],
+                 h.id[i],    h.kind[i], 0};
+  const auto at = out.size();
+  out.resize(at + sizeof(Record));
+  std::memcpy(out.data() + at, &r, sizeof(Record));
+}
+
+void push(particles::HostParticles& h, const Record& r, std::uint8_t halo) {
+  h.pos.push_back(r.pos);
+  h.vel.push_back(r.vel);
+  h.vel_prev.push_back(r.vel_prev);
+  h.rho.push_back(r.rho);
+  h.rho_prev.push_back(r.rho_prev);
+  h.press.push_back(r.press);
+  h.id.push_back(r.id);
+  h.kind.push_back(r.kind);
+  h.halo.push_back(halo);
+}
+
+void push(particles::HostParticles& dst, const particles::HostParticles& src, std::size_t i, std::uint8_t halo) {
+  push(dst, Record{src.pos[i], src.vel[i], src.vel_prev[i], src.rho[i], src.rho_prev[i], src.press[i], src.id[i],
+                   src.kind[i], 0},
+       halo);
+}
+
+void unpack(const std::vector<char>& in, particles::HostParticles& h, std::uint8_t halo) {
+  for (std::size_t at = 0; at + sizeof(Record) <= in.size(); at += sizeof(Record)) {
+    Record r{};
+    std::memcpy(&r, in.data() + at, sizeof(Record));
+    push(h, r, halo);
+  }
+}
+
+// The work a particle brings to its process: fluid sums over all its neighbours, wall and
+// body particles over fluid ones only (about half).
+double weight(std::uint8_t kind) {
+  if (kind == static_cast<std::uint8_t>(Kind::Fluid)) return 1.0;
+  return kind == static_cast<std::uint8_t>(Kind::Removed) ? 0.0 : 0.5;
+}
+
+bool removed(const particles::HostParticles& h, std::size_t i) {
+  return h.kind[i] == static_cast<std::uint8_t>(Kind::Removed);
+}
+bool is_halo(const particles::HostParticles& h, std::size_t i) { return !h.halo.empty() && h.halo[i] != 0; }
+
+void require_history(const particles::HostParticles& h) {
+  if (h.vel_prev.size() != h.size() || h.rho_prev.size() != h.size())
+    throw std::logic_error("slab exchange: particles without their integration history");
+}
+
+} // namespace
+
+int longest_axis(const Vec3& lo, const Vec3& hi) {
+  int a = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[a] - lo[a]) a = k;
+  return a;
+}
+
+SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reach)
+    : axis_(axis), lo_(lo), hi_(std::max(hi, lo)), reach_(reach) {
+  // Faces fall on bin edges; bins of an eighth of the reach keep the load even to a few
+  // per cent without a histogram larger than 64 Ki bins.
+  bin_ = std::max((hi_ - lo_) / 65536.0, reach_ / 8.0);
+  if (!(bin_ > 0)) bin_ = 1;
+  const int p = comm::size();
+  cuts_.assign(static_cast<std::size_t>(p) + 1, 0.0);
+  for (int r = 0; r <= p; ++r) cuts_[r] = lo_ + (hi_ - lo_) * r / p;
+  cuts_.front() = -std::numeric_limits<double>::infinity();
+  cuts_.back() = std::numeric_limits<double>::infinity();
+}
+
+int SlabDecomposition::owner(Real x) const {
+  if (!std::isfinite(x)) return comm::rank(); // diverged: kept where it is, for the step's checks to see
+  const auto xd = static_cast<double>(x);
+  // The number of inner faces at or below x.
+  const auto it = std::upper_bound(cuts_.begin() + 1, cuts_.end() - 1, xd);
+  return static_cast<int>(it - (cuts_.begin() + 1));
+}
+
+bool SlabDecomposition::owns(const Vec3& p) const { return owner(p[axis_]) == comm::rank(); }
+
+Distribution SlabDecomposition::distribution() const {
+  Distribution d;
+  d.owns_point = [this](const Vec3& x) { return owns(x); };
+  d.sum_exact = [](Real* x, std::size_t n) { comm::sum(x, n); };
+  d.min = [](double x) { return comm::min(x); };
+  return d;
+}
+
+std::vector<double> SlabDecomposition::histogram(const particles::HostParticles& h, bool owned_only) const {
+  const auto nb = static_cast<std::size_t>(std::clamp(std::ceil((hi_ - lo_) / bin_), 1.0, 65536.0));
+  std::vector<double> hist(nb, 0.0);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    if (owned_only && is_halo(h, i)) continue;
+    const double x = static_cast<double>(h.pos[i][axis_]);
+    if (!std::isfinite(x)) continue;
+    const auto b = static_cast<std::size_t>(std::clamp(std::floor((x - lo_) / bin_), 0.0, static_cast<double>(nb - 1)));
+    hist[b] += weight(h.kind[i]);
+  }
+  return hist;
+}
+
+void SlabDecomposition::cuts_from(const std::vector<double>& hist) {
+  const int p = comm::size();
+  const double total = std::accumulate(hist.begin(), hist.end(), 0.0);
+  double cum = 0;
+  std::size_t b = 0;
+  for (int r = 1; r < p; ++r) {
+    const double target = total * r / p;
+    while (b < hist.size() && cum + hist[b] <= target) cum += hist[b++];
+    // Face at the edge of the bin where the cumulative work passes the target (whichever
+    // side of that bin is nearer).
+    const bool take = b < hist.size() && target - cum > cum + hist[b] - target;
+    if (take) cum += hist[b++];
+    cuts_[r] = lo_ + static_cast<double>(b) * bin_;
+  }
+}
+
+void SlabDecomposition::balance(const particles::HostParticles& all) { cuts_from(histogram(all, false)); }
+
+bool SlabDecomposition::rebalance(const particles::HostParticles& local, double threshold) {
+  double w = 0;
+  for (std::size_t i = 0; i < local.size(); ++i)
+    if (!is_halo(local, i)) w += weight(local.kind[i]);
+  const double busiest = comm::max(w), mean = comm::sum(w) / comm::size();
+  if (!(busiest > threshold * mean)) return false;
+  auto hist = histogram(local, true);
+  comm::sum(hist.data(), hist.size());
+  cuts_from(hist);
+  return true;
+}
+
+ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const {
+  require_history(all);
+  const int me = comm::rank();
+  particles::HostParticles mine, halo;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (removed(all, i)) continue;
+    const Real x = all.pos[i][axis_];
+    const int o = owner(x);
+    if (o == me)
+      push(mine, all, i, 0);
+    else if (static_cast<double>(x) >= cuts_[me] - reach_ && static_cast<double>(x) < cuts_[me + 1] + reach_)
+      push(halo, all, i, 1);
+  }
+  ExchangeStats s;
+  s.owned = mine.size();
+  s.halo = halo.size();
+  for (std::size_t i = 0; i < halo.size(); ++i) push(mine, halo, i, 1);
+  all = std::move(mine);
+  return s;
+}
+
+ExchangeStats SlabDecomposition::exchange(particles::HostParticles& local) const {
+  require_history(local);
+  const int me = comm::rank(), p = comm::size();
+  particles::HostParticles owned;
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
+  ExchangeStats s;
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    if (is_halo(local, i) || removed(local, i)) continue;
+    const int o = owner(local.pos[i][axis_]);
+    if (o == me) {
+      push(owned, local, i, 0);
+    } else {
+      append(out[o], local, i);
+      ++s.migrated;
+    }
+  }
+  for (const auto& o : out) s.bytes_sent += o.size();
+  for (const auto& in : comm::all_to_all(out)) unpack(in, owned, 0);
+  const ExchangeStats hs = send_halos(owned);
+  s.halo_sent = hs.halo_sent;
+  s.bytes_sent += hs.bytes_sent;
+  s.owned = hs.owned;
+  s.halo = hs.halo;
+  local = std::move(owned);
+  return s;
+}
+
+ExchangeStats SlabDecomposition::send_halos(particles::HostParticles& owned) const {
+  const int me = comm::rank(), p = comm::size();
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
+  ExchangeStats s;
+  s.owned = owned.size();
+  for (std::size_t i = 0; i < owned.size(); ++i) {
+    const auto x = static_cast<double>(owned.pos[i][axis_]);
+    for (int r = me - 1; r >= 0 && x < cuts_[r + 1] + reach_; --r) append(out[r], owned, i);
+    for (int r = me + 1; r < p && x >= cuts_[r] - reach_; ++r) append(out[r], owned, i);
+  }
+  for (const auto& o : out) {
+    s.bytes_sent += o.size();
+    s.halo_sent += o.size() / sizeof(Record);
+  }
+  for (const auto& in : comm::all_to_all(out)) unpack(in, owned, 1);
+  s.halo = owned.size() - s.owned;
+  return s;
+}
+
+particles::HostParticles SlabDecomposition::gather(const particles::HostParticles& local) const {
+  std::vector<char> mine;
+  for (std::size_t i = 0; i < local.size(); ++i)
+    if (!is_halo(local, i) && !removed(local, i)) append(mine, local, i);
+  const std::vector<char> all = comm::gather(mine);
+  particles::HostParticles unordered, h;
+  unpack(all, unordered, 0);
+  std::vector<std::size_t> order(unordered.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return unordered.id[a] < unordered.id[b]; });
+  for (std::size_t i : order) push(h, unordered, i, 0);
+  h.halo.clear();
+  return h;
+}
+
+} // namespace surge::domain
