@@ -40,7 +40,8 @@ exit codes: 0 done, 1 internal error, 2 bad input, 3 run diverged, 130 interrupt
 )";
 
 int fail_usage(const std::string& msg) {
-  if (surge::domain::comm::rank() == 0) std::fprintf(stderr, "error: %s\n(run 'surge --help' for usage)\n", msg.c_str());
+  if (surge::domain::comm::rank() == 0)
+    std::fprintf(stderr, "error: %s\n(run 'surge --help' for usage)\n", msg.c_str());
   return 2;
 }
 

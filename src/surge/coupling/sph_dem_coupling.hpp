@@ -46,7 +46,7 @@ private:
   std::size_t n_body_ = 0;
   int n_spheres_ = 0;
   Real dt_dem_ = 0;
-  par::Buffer<Vec3> offset_, ghost_;                // body frame: particle offsets, mDBC ghost offsets
+  par::Buffer<Vec3> offset_, ghost_; // body frame: particle offsets, mDBC ghost offsets
   par::Buffer<std::uint32_t> owner_, start_;
   par::Buffer<Vec3> body_acc_, body_pos_; // by body index: the last rates' acceleration and position
   Distribution dist_;

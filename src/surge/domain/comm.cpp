@@ -1,8 +1,8 @@
 #include "surge/domain/comm.hpp"
 
 #include <cstdlib>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #if defined(SURGE_MPI)

@@ -22,8 +22,7 @@ struct Record {
 };
 
 void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i) {
-  const Record r{h.pos[i],   h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i],
-                 h.id[i],    h.kind[i], 0};
+  const Record r{h.pos[i], h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i], h.id[i], h.kind[i], 0};
   const auto at = out.size();
   out.resize(at + sizeof(Record));
   std::memcpy(out.data() + at, &r, sizeof(Record));
@@ -42,8 +41,9 @@ void push(particles::HostParticles& h, const Record& r, std::uint8_t halo) {
 }
 
 void push(particles::HostParticles& dst, const particles::HostParticles& src, std::size_t i, std::uint8_t halo) {
-  push(dst, Record{src.pos[i], src.vel[i], src.vel_prev[i], src.rho[i], src.rho_prev[i], src.press[i], src.id[i],
-                   src.kind[i], 0},
+  push(dst,
+       Record{src.pos[i], src.vel[i], src.vel_prev[i], src.rho[i], src.rho_prev[i], src.press[i], src.id[i],
+              src.kind[i], 0},
        halo);
 }
 
@@ -231,7 +231,8 @@ particles::HostParticles SlabDecomposition::gather(const particles::HostParticle
   unpack(all, unordered, 0);
   std::vector<std::size_t> order(unordered.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return unordered.id[a] < unordered.id[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return unordered.id[a] < unordered.id[b]; });
   for (std::size_t i : order) push(h, unordered, i, 0);
   h.halo.clear();
   return h;

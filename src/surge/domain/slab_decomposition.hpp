@@ -12,11 +12,11 @@
 namespace surge::domain {
 
 struct ExchangeStats {
-  std::size_t migrated = 0;    // particles this process handed to another owner
-  std::size_t halo_sent = 0;   // halo copies this process sent
-  std::size_t bytes_sent = 0;  // both, in bytes
-  std::size_t owned = 0;       // particles this process owns after the exchange
-  std::size_t halo = 0;        // halo copies it holds
+  std::size_t migrated = 0;   // particles this process handed to another owner
+  std::size_t halo_sent = 0;  // halo copies this process sent
+  std::size_t bytes_sent = 0; // both, in bytes
+  std::size_t owned = 0;      // particles this process owns after the exchange
+  std::size_t halo = 0;       // halo copies it holds
 };
 
 class SlabDecomposition {

@@ -14,6 +14,12 @@
 
 namespace surge::io {
 namespace {
+// The folder of a case file, absolute (relative files in it are resolved against it).
+std::filesystem::path case_dir(const std::string& file) {
+  std::error_code ec;
+  const auto abs = std::filesystem::absolute(std::filesystem::path(file), ec);
+  return (ec ? std::filesystem::path(file) : abs).parent_path();
+}
 
 // Walks a YAML tree, remembering the file and the key path for messages.
 class Reader {
@@ -243,7 +249,8 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
       if (dem.materials[k].name == name) return static_cast<int>(k);
     r.fail(n["material"], path + ".material", "no DEM material named '" + name + "'");
   };
-  const auto dir = std::filesystem::path(r.file()).parent_path();
+  // Absolute: the run folder's case.yaml names the same files wherever `surge restart` runs.
+  const auto dir = case_dir(r.file());
   auto resolve = [&](const YAML::Node& n, const std::string& key, const std::string& rel) {
     std::filesystem::path p(rel);
     if (p.is_relative()) p = dir / p;
@@ -427,7 +434,8 @@ Case parse(const YAML::Node& root, Reader& r) {
   const YAML::Node walls = root["walls"];
   if (walls.IsDefined() && !walls.IsNull()) {
     if (!walls.IsSequence()) r.fail(walls, "walls", "expected a list of walls");
-    const auto dir = std::filesystem::path(r.file()).parent_path();
+    // Absolute: the run folder's case.yaml names the same files wherever `surge restart` runs.
+    const auto dir = case_dir(r.file());
     for (std::size_t i = 0; i < walls.size(); ++i) {
       const std::string path = "walls." + std::to_string(i);
       const YAML::Node w = walls[i];

@@ -60,9 +60,20 @@ void ParticleStore::download(HostParticles& h, bool history) const {
 void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<std::size_t>(n_)); }
 
 ParticleView ParticleStore::view() {
-  return {n_,           pos_.data(),  vel_.data(),      vel_prev_.data(), pos_prev_.data(),
-          acc_.data(),  rho_.data(),  rho_prev_.data(), drho_.data(),     press_.data(),
-          vsig_.data(), kind_.data(), id_.data(),     distributed_ ? halo_.data() : nullptr};
+  return {n_,
+          pos_.data(),
+          vel_.data(),
+          vel_prev_.data(),
+          pos_prev_.data(),
+          acc_.data(),
+          rho_.data(),
+          rho_prev_.data(),
+          drho_.data(),
+          press_.data(),
+          vsig_.data(),
+          kind_.data(),
+          id_.data(),
+          distributed_ ? halo_.data() : nullptr};
 }
 
 template <class T>

@@ -46,7 +46,7 @@ void DistributedRun::sync() {
   const auto t0 = std::chrono::steady_clock::now();
   particles::HostParticles h;
   solver_.download(h, true);
-  if (solver_.step_count() % rebalance_every == 0) slabs_->rebalance(h, rebalance_threshold);
+  if (solver_.step_count() % rebalance_every == 0 && slabs_->rebalance(h, rebalance_threshold)) ++traffic_.rebalances;
   const auto s = slabs_->exchange(h);
   solver_.replace(h);
   stale_ = false;
@@ -107,10 +107,12 @@ std::string DistributedRun::summary_json() const {
   const double steps = traffic_.exchanges > 0 ? static_cast<double>(traffic_.exchanges) : 1.0;
   j << "{\"ranks\": " << ranks();
   if (active()) {
-    j << ", \"axis\": \"" << "xyz"[slabs_->axis()] << "\", \"halo_reach\": " << slabs_->reach()
-      << ", \"rank0\": {\"exchanges\": " << traffic_.exchanges << ", \"exchange_seconds\": " << traffic_.seconds
-      << ", \"bytes_sent_per_exchange\": " << traffic_.bytes_sent / steps << ", \"halo_particles\": " << traffic_.halo_now
-      << "}";
+    j << ", \"axis\": \""
+      << "xyz"[slabs_->axis()] << "\", \"halo_reach\": " << slabs_->reach()
+      << ", \"rebalances\": " << traffic_.rebalances << ", \"rank0\": {\"exchanges\": " << traffic_.exchanges
+      << ", \"exchange_seconds\": " << traffic_.seconds
+      << ", \"bytes_sent_per_exchange\": " << traffic_.bytes_sent / steps
+      << ", \"halo_particles\": " << traffic_.halo_now << "}";
   }
   j << "}";
   return j.str();

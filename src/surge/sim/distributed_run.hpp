@@ -42,7 +42,7 @@ public:
   [[nodiscard]] static double total(double per_process);
   // For summary.json: exchange time and traffic of this process.
   struct Traffic {
-    long exchanges = 0;
+    long exchanges = 0, rebalances = 0;
     double seconds = 0, bytes_sent = 0;
     long halo_now = 0;
   };

@@ -47,8 +47,9 @@ struct ExtraCounts {
 };
 
 std::string summary_json(const Case& c, const sph::InitialState& init, const ExtraCounts& extra,
-                         const std::string& status, int code, long steps, double t, double wall, const Totals& tot,
-                         long n_now, double rss, const std::string& distributed, const std::string& message) {
+                         const std::string& status, int code, long steps, double t, double wall, long loop_steps,
+                         double loop_wall, const Totals& tot, long n_now, double rss, const std::string& distributed,
+                         const std::string& message) {
   std::ostringstream j;
   j.precision(10);
   const double n_all = static_cast<double>(init.n_fluid + init.n_wall + extra.body);
@@ -60,9 +61,11 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const Ext
     << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": " << extra.body
     << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
     << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
-    << "  \"particle_steps_per_second\": " << (wall > 0 ? n_all * static_cast<double>(steps) / wall : 0.0) << ",\n"
+    << "  \"loop_steps\": " << loop_steps << ",\n  \"loop_seconds\": " << loop_wall << ",\n"
+    << "  \"particle_steps_per_second\": "
+    << (loop_wall > 0 ? n_all * static_cast<double>(loop_steps) / loop_wall : 0.0) << ",\n"
     << "  \"fluid_particle_steps_per_second\": "
-    << (wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(steps) / wall : 0.0) << ",\n"
+    << (loop_wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(loop_steps) / loop_wall : 0.0) << ",\n"
     << "  \"removed\": {\"total\": " << tot.removed() << ", \"left_domain\": " << tot.removed_domain
     << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite;
   if (tot.removed_domain + tot.removed_density > 0)
@@ -237,15 +240,21 @@ int run(const Case& c, const RunOptions& opt) {
   int frame = 0;
   std::size_t rows_written = 0;
   std::vector<double> frame_times;
+  // The time loop of this invocation (a restart's loop starts at its checkpoint): the
+  // throughput figures count its steps over its time, set-up and first output excluded.
+  auto loop0 = Clock::now();
+  long steps0 = 0;
   auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    const double loop_wall = std::chrono::duration<double>(Clock::now() - loop0).count();
     // Collective: every process takes part, rank 0 writes (RSS summed over processes).
     const long n_now = dist.owned_particles();
     const double rss = dist.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
     if (root)
       io::write_file_atomic((out / "summary.json").string(),
-                            summary_json(c, init, extra, status, code, solver.step_count(), t, wall, tot, n_now, rss,
-                                         dist.summary_json(), msg));
+                            summary_json(c, init, extra, status, code, solver.step_count(), t, wall,
+                                         solver.step_count() - steps0, loop_wall, tot, n_now, rss, dist.summary_json(),
+                                         msg));
   };
   auto sample_gauges = [&] {
     dist.sync();
@@ -256,10 +265,13 @@ int run(const Case& c, const RunOptions& opt) {
       ff = cp->dem->external_forces();
       fm = cp->dem->external_torques();
     }
-    auto v = gauges.sample(solver, [&](const GaugeSpec& g) {
-      return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
-                                          : sphere_gauge_value(g, sp, ff, fm, init.origin);
-    }, dist.distribution());
+    auto v = gauges.sample(
+        solver,
+        [&](const GaugeSpec& g) {
+          return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
+                                              : sphere_gauge_value(g, sp, ff, fm, init.origin);
+        },
+        dist.distribution());
     v.insert(v.begin(), t);
     rows.push_back(std::move(v));
   };
@@ -360,8 +372,8 @@ int run(const Case& c, const RunOptions& opt) {
   const double dt_min = c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c);
   const double max_removed = c.sph.max_removed_share * static_cast<double>(init.n_fluid);
   auto last_report = Clock::now();
-  const auto loop0 = Clock::now();
-  const long steps0 = solver.step_count();
+  loop0 = Clock::now();
+  steps0 = solver.step_count();
   const double t0 = t;
   std::string failure;
   bool stop = false; // Ctrl-C, agreed by every process
@@ -438,8 +450,9 @@ int run(const Case& c, const RunOptions& opt) {
     // Outputs written so far are the last good state; nothing after it is written.
     write_summary("diverged", 3, failure);
     if (root)
-      std::fprintf(stderr, "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
-                 failure.c_str(), frame > 0 ? (frame - 1) * c.time.output_every : 0.0, out.string().c_str());
+      std::fprintf(stderr,
+                   "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
+                   failure.c_str(), frame > 0 ? (frame - 1) * c.time.output_every : 0.0, out.string().c_str());
     return 3;
   }
   const bool interrupted = stop;
@@ -448,13 +461,15 @@ int run(const Case& c, const RunOptions& opt) {
                 interrupted ? "stopped by the user" : "");
   if (!quiet) {
     const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+    const double loop_wall = std::chrono::duration<double>(Clock::now() - loop0).count();
     const double n = static_cast<double>(init.n_fluid + init.n_wall);
+    // Throughput over this invocation's own steps (after a restart, not the whole run's).
     std::fprintf(stderr,
                  "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid "
                  "particles removed\n  output in %s\n",
                  interrupted ? "interrupted" : "done", solver.step_count(), t, wall,
-                 n * static_cast<double>(solver.step_count()) / wall, init.n_fluid, init.n_wall, tot.removed(),
-                 out.string().c_str());
+                 n * static_cast<double>(solver.step_count() - steps0) / loop_wall, init.n_fluid, init.n_wall,
+                 tot.removed(), out.string().c_str());
   }
   return interrupted ? 130 : 0;
 }

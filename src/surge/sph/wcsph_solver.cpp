@@ -114,7 +114,8 @@ Real min_dt(const WcsphParams& prm, const particles::ParticleView& p) {
 }
 
 // Flags owned fluid particles outside [lo, hi], with density outside [rmin, rmax] or
-// non-finite as Removed (a halo copy is its owner's to judge). Returns counts packed as non-finite << 42 | density << 21 | domain.
+// non-finite as Removed (a halo copy is its owner's to judge). Returns counts packed as non-finite << 42 | density <<
+// 21 | domain.
 long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real rmin, Real rmax) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), removed = static_cast<std::uint8_t>(Kind::Removed);
   return par::parallel_reduce(
@@ -279,7 +280,8 @@ void WcsphSolver::replace(const particles::HostParticles& h) {
 int WcsphSolver::owned_count() {
   const auto p = store_.view();
   return par::parallel_reduce(
-      p.n, 0, SURGE_LAMBDA(int i) { return p.kind[i] != static_cast<std::uint8_t>(Kind::Removed) && p.owned(i) ? 1 : 0; },
+      p.n, 0,
+      SURGE_LAMBDA(int i) { return p.kind[i] != static_cast<std::uint8_t>(Kind::Removed) && p.owned(i) ? 1 : 0; },
       par::Sum{});
 }
 

@@ -1,0 +1,140 @@
+"""Distributed runs (MPI build): the same case on 1, 2 and 3 processes gives the same
+bits -- gauges, every particle file, the checkpoint -- on a dam break, on the coupled
+slide at coarse resolution and on Archimedes with mDBC and the symplectic integrator;
+a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
+input, divergence and Ctrl-C end every process with the single-process exit codes.
+
+usage: test_mpi.py SURGE WORK CASES"""
+import filecmp
+import glob
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+SURGE, WORK, CASES = sys.argv[1], sys.argv[2], sys.argv[3]
+MPIRUN = shutil.which("mpirun")
+failures = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what, flush=True)
+    if not cond:
+        failures.append(what)
+
+
+def mpi(n, args, timeout=600):
+    # One thread per process: 3 processes on this 2-core machine already oversubscribe it.
+    cmd = [MPIRUN, "--oversubscribe", "-n", str(n)]
+    if os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="PASSIVE")
+    return subprocess.run(cmd + [SURGE] + args + ["--threads", "1"], capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def same_files(a, b, what):
+    """Every gauge, particle and checkpoint file of run a equals run b, byte for byte."""
+    names = ["gauges.csv", "checkpoint.bin"] + sorted(
+        os.path.relpath(f, a) for f in glob.glob(os.path.join(a, "particles", "*.vtp")))
+    diff = [n for n in names if not os.path.exists(os.path.join(b, n))
+            or not filecmp.cmp(os.path.join(a, n), os.path.join(b, n), shallow=False)]
+    check(not diff, f"{what}: {len(names)} files bitwise equal ({', '.join(diff[:4]) or 'none differ'})")
+
+
+def runs_on(ranks, name, case, sets):
+    outs = {}
+    for n in ranks:
+        out = os.path.join(WORK, f"{name}_{n}")
+        t0 = time.time()
+        r = mpi(n, ["run", case, "--out", out, "--quiet"] + sets)
+        check(r.returncode == 0, f"{name} on {n} process(es) runs ({time.time() - t0:.0f} s; exit {r.returncode}"
+              f"{': ' + r.stderr[-300:] if r.returncode else ''})")
+        outs[n] = out
+    return outs
+
+
+if MPIRUN is None:
+    print("FAIL mpirun not found (Debian: openmpi-bin)")
+    sys.exit(1)
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+
+# --- dam break: at least 300 steps, the front collapsing across slab faces
+dam = runs_on([1, 2, 3], "dambreak", os.path.join(CASES, "demo_dambreak.yaml"),
+              ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
+s1, s3 = summary(dam[1]), summary(dam[3])
+check(s1["steps"] >= 300, f"dam break: {s1['steps']} steps (>= 300)")
+check(s1["distributed"]["ranks"] == 1 and s3["distributed"]["ranks"] == 3, "summary.json gives the process count")
+check(s3["distributed"]["rank0"]["bytes_sent_per_exchange"] > 0 and s3["distributed"]["rank0"]["halo_particles"] > 0,
+      "3 processes exchange halos (%.0f B per exchange from rank 0)" % s3["distributed"]["rank0"]["bytes_sent_per_exchange"])
+check(s3["particles"]["now"] == s1["particles"]["now"], "the same particle count on 3 processes as on 1")
+for n in (2, 3):
+    same_files(dam[1], dam[n], f"dam break, 1 and {n} processes")
+
+# --- the coupled slide at dp = 0.04 m: spheres entering the water, DEM on every process
+slide_sets = ["--set", "dp=0.04", "--set", "time.end=0.075", "--set", "time.output_every=0.025"]
+slide = runs_on([1, 2, 3], "slide", os.path.join(CASES, "slide_tsunami.yaml"), slide_sets)
+check(summary(slide[1])["steps"] >= 300, f"slide: {summary(slide[1])['steps']} steps (>= 300)")
+for n in (2, 3):
+    same_files(slide[1], slide[n], f"coupled slide, 1 and {n} processes")
+
+# --- restart on another process count: written by 3 processes, continued by 2
+out = os.path.join(WORK, "slide_restart")
+r = mpi(3, ["run", os.path.join(CASES, "slide_tsunami.yaml"), "--out", out, "--quiet", "--set", "dp=0.04",
+            "--set", "time.end=0.05", "--set", "time.output_every=0.025"])
+check(r.returncode == 0, f"slide to t = 0.05 s on 3 processes (exit {r.returncode})")
+r = mpi(2, ["restart", out, "--quiet", "--set", "time.end=0.075"])
+check(r.returncode == 0, f"restart on 2 processes (exit {r.returncode}: {r.stderr[-300:]})")
+same_files(slide[1], out, "slide written by 3 processes, continued by 2, against 1 straight")
+
+# --- mDBC ghosts (sphere and walls) and the two-evaluation symplectic step: the widest halo
+arch = runs_on([1, 3], "archimedes", os.path.join(CASES, "archimedes.yaml"),
+               ["--set", "time.end=0.02", "--set", "time.output_every=0.01", "--set", "sph.boundary=mdbc",
+                "--set", "sph.integrator=symplectic"])
+same_files(arch[1], arch[3], "Archimedes with mdbc and symplectic, 1 and 3 processes")
+
+# --- bad input: every process stops, one message, exit 2, nothing written
+r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])
+check(r.returncode == 2, f"bad input on 2 processes exits 2 (got {r.returncode})")
+check(r.stderr.count("error:") == 1, f"one error message, not one per process ({r.stderr.count('error:')})")
+check(not os.path.exists(os.path.join(WORK, "bad")), "nothing written for bad input")
+
+# --- divergence: every process stops at the same step with exit 3, outputs intact
+out = os.path.join(WORK, "unstable")
+r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--set", "sph.cfl=8",
+            "--set", "time.end=0.5", "--set", "time.output_every=0.01"])
+check(r.returncode == 3, f"diverging run on 2 processes exits 3 (got {r.returncode}; {r.stderr[-200:]})")
+check(r.returncode == 3 and summary(out)["status"] == "diverged", "summary records the divergence")
+
+# --- Ctrl-C (mpirun passes SIGINT on as SIGTERM): every process stops, state written, exit 130
+out = os.path.join(WORK, "interrupted")
+cmd = [MPIRUN, "--oversubscribe", "-n", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+p = subprocess.Popen(cmd + [SURGE, "run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--threads", "1",
+                            "--set", "time.end=100"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                     env=dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="PASSIVE"))
+deadline = time.time() + 120
+while time.time() < deadline and not os.path.exists(os.path.join(out, "summary.json")):
+    time.sleep(0.2)
+time.sleep(2.0)
+p.send_signal(signal.SIGINT)
+try:
+    p.communicate(timeout=120)
+except subprocess.TimeoutExpired:
+    p.kill()
+    p.communicate()
+s = summary(out)
+check(s["status"] == "interrupted", f"interrupted run's summary says so (status {s['status']}, mpirun exit "
+      f"{p.returncode})")
+check(s["steps"] > 0 and os.path.exists(os.path.join(out, "checkpoint.bin")), "its state is written")
+
+print(f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
