@@ -27,7 +27,7 @@ run() { # label processes threads binary
   if [ "$np" = 0 ]; then
     OMP_NUM_THREADS=$th "$bin" run cases/spheric_test2.yaml --out "$work/$label" --threads "$th" "${sets[@]}"
   else
-    OMP_NUM_THREADS=$th mpirun --oversubscribe $root -n "$np" "$bin" run cases/spheric_test2.yaml \
+    OMP_NUM_THREADS=$th mpirun --oversubscribe --bind-to none $root -n "$np" "$bin" run cases/spheric_test2.yaml \
       --out "$work/$label" --threads "$th" "${sets[@]}"
   fi
 }

@@ -1,5 +1,6 @@
 #include "surge/domain/comm.hpp"
 
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,22 @@
 
 namespace surge::domain::comm {
 
+namespace {
+double g_collective_seconds = 0;
+// Adds the lifetime of the scope to g_collective_seconds.
+struct CollectiveTimer {
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  CollectiveTimer() = default;
+  CollectiveTimer(const CollectiveTimer&) = delete;
+  CollectiveTimer& operator=(const CollectiveTimer&) = delete;
+  ~CollectiveTimer() {
+    g_collective_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+};
+} // namespace
+
+double collective_seconds() { return g_collective_seconds; }
+
 #if defined(SURGE_MPI)
 namespace {
 void check(int err, const char* what) {
@@ -20,6 +37,7 @@ MPI_Datatype real_type() { return std::is_same_v<Real, float> ? MPI_FLOAT : MPI_
 template <class T>
 void allreduce(T* x, std::size_t n, MPI_Datatype type, MPI_Op op) {
   if (size() == 1 || n == 0) return;
+  const CollectiveTimer timer;
   check(MPI_Allreduce(MPI_IN_PLACE, x, static_cast<int>(n), type, op, MPI_COMM_WORLD), "allreduce");
 }
 } // namespace
@@ -60,6 +78,7 @@ void broadcast(std::vector<char>& bytes) {
 }
 
 std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) {
+  const CollectiveTimer timer;
   const int p = size();
   std::vector<int> scount(p), rcount(p), sdisp(p), rdisp(p);
   std::vector<char> sbuf;

@@ -27,6 +27,9 @@ void max(double* x, std::size_t n);
 [[nodiscard]] double min(double x);
 [[nodiscard]] double max(double x);
 [[nodiscard]] double sum(double x);
+// Seconds this process has spent inside collective calls (waiting for the others
+// included): the load imbalance shows as the difference between processes.
+[[nodiscard]] double collective_seconds();
 // Rank 0's bytes to every process.
 void broadcast(std::vector<char>& bytes);
 // send[r]: bytes for process r; returns what each process sent this one, by sender.

@@ -112,15 +112,16 @@ Distribution SlabDecomposition::distribution() const {
   return d;
 }
 
-std::vector<double> SlabDecomposition::histogram(const particles::HostParticles& h, bool owned_only) const {
+template <class X, class W>
+std::vector<double> SlabDecomposition::histogram(std::size_t n, X x, W weight) const {
   const auto nb = static_cast<std::size_t>(std::clamp(std::ceil((hi_ - lo_) / bin_), 1.0, 65536.0));
   std::vector<double> hist(nb, 0.0);
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    if (owned_only && is_halo(h, i)) continue;
-    const double x = static_cast<double>(h.pos[i][axis_]);
-    if (!std::isfinite(x)) continue;
-    const auto b = static_cast<std::size_t>(std::clamp(std::floor((x - lo_) / bin_), 0.0, static_cast<double>(nb - 1)));
-    hist[b] += weight(h.kind[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = x(i);
+    if (!std::isfinite(xi)) continue;
+    const auto b =
+        static_cast<std::size_t>(std::clamp(std::floor((xi - lo_) / bin_), 0.0, static_cast<double>(nb - 1)));
+    hist[b] += weight(i);
   }
   return hist;
 }
@@ -141,15 +142,26 @@ void SlabDecomposition::cuts_from(const std::vector<double>& hist) {
   }
 }
 
-void SlabDecomposition::balance(const particles::HostParticles& all) { cuts_from(histogram(all, false)); }
+void SlabDecomposition::balance(const particles::HostParticles& all) {
+  cuts_from(histogram(
+      all.size(), [&](std::size_t i) { return static_cast<double>(all.pos[i][axis_]); },
+      [&](std::size_t i) { return weight(all.kind[i]); }));
+}
 
-bool SlabDecomposition::rebalance(const particles::HostParticles& local, double threshold) {
-  double w = 0;
-  for (std::size_t i = 0; i < local.size(); ++i)
-    if (!is_halo(local, i)) w += weight(local.kind[i]);
-  const double busiest = comm::max(w), mean = comm::sum(w) / comm::size();
-  if (!(busiest > threshold * mean)) return false;
-  auto hist = histogram(local, true);
+bool SlabDecomposition::rebalance(const std::vector<Real>& x, const std::vector<std::uint8_t>& state,
+                                  const Balance& b) {
+  // state: 0 owned fluid, 1 halo copy, 2 removed, 3 owned wall or body (ParticleStore::coordinates).
+  const auto counted = [&](std::size_t i) { return state[i] == 0 ? 1.0 : (state[i] == 3 ? 0.5 : 0.0); };
+  double mine = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mine += counted(i);
+  // Work: measured seconds when given (every process must give them), else the counts.
+  const double work = b.busy_seconds > 0 ? b.busy_seconds : mine;
+  const double busiest = comm::max(work), mean = comm::sum(work) / comm::size();
+  if (!(busiest > b.threshold * mean)) return false;
+  const double per_count = mine > 0 ? work / mine : 0.0;
+  auto hist = histogram(
+      x.size(), [&](std::size_t i) { return static_cast<double>(x[i]); },
+      [&](std::size_t i) { return counted(i) * per_count; });
   comm::sum(hist.data(), hist.size());
   cuts_from(hist);
   return true;
@@ -176,49 +188,70 @@ ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const
   return s;
 }
 
-ExchangeStats SlabDecomposition::exchange(particles::HostParticles& local) const {
-  require_history(local);
-  const int me = comm::rank(), p = comm::size();
-  particles::HostParticles owned;
-  std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
-  ExchangeStats s;
-  for (std::size_t i = 0; i < local.size(); ++i) {
-    if (is_halo(local, i) || removed(local, i)) continue;
-    const int o = owner(local.pos[i][axis_]);
-    if (o == me) {
-      push(owned, local, i, 0);
-    } else {
-      append(out[o], local, i);
-      ++s.migrated;
-    }
-  }
-  for (const auto& o : out) s.bytes_sent += o.size();
-  for (const auto& in : comm::all_to_all(out)) unpack(in, owned, 0);
-  const ExchangeStats hs = send_halos(owned);
-  s.halo_sent = hs.halo_sent;
-  s.bytes_sent += hs.bytes_sent;
-  s.owned = hs.owned;
-  s.halo = hs.halo;
-  local = std::move(owned);
-  return s;
+bool SlabDecomposition::near_other_slab(double x) const {
+  const int me = comm::rank();
+  return (me > 0 && x < cuts_[me] + reach_) || (me + 1 < comm::size() && x >= cuts_[me + 1] - reach_);
 }
 
-ExchangeStats SlabDecomposition::send_halos(particles::HostParticles& owned) const {
+void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const {
   const int me = comm::rank(), p = comm::size();
-  std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
-  ExchangeStats s;
-  s.owned = owned.size();
-  for (std::size_t i = 0; i < owned.size(); ++i) {
-    const auto x = static_cast<double>(owned.pos[i][axis_]);
-    for (int r = me - 1; r >= 0 && x < cuts_[r + 1] + reach_; --r) append(out[r], owned, i);
-    for (int r = me + 1; r < p && x >= cuts_[r] - reach_; ++r) append(out[r], owned, i);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const auto x = static_cast<double>(h.pos[i][axis_]);
+    for (int r = me - 1; r >= 0 && x < cuts_[r + 1] + reach_; --r) append(out[r], h, i);
+    for (int r = me + 1; r < p && x >= cuts_[r] - reach_; ++r) append(out[r], h, i);
   }
+}
+
+ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const Balance* balance) {
+  const int me = comm::rank(), p = comm::size();
+  std::vector<Real> x;
+  std::vector<std::uint8_t> state;
+  store.coordinates(axis_, x, state);
+  ExchangeStats s;
+  s.rebalanced = balance && rebalance(x, state, *balance);
+  // Halo copies go (fresh ones come); leavers go to their owner; owned particles near a
+  // face are copied to the slabs within reach. Removed ones stay for the sort to drop.
+  std::vector<std::uint32_t> drop, leave, near;
+  std::vector<int> leave_to;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (state[i] == 2) continue;
+    const auto k = static_cast<std::uint32_t>(i);
+    if (state[i] == 1) {
+      drop.push_back(k);
+      continue;
+    }
+    const int o = owner(x[i]);
+    if (o != me) {
+      drop.push_back(k);
+      leave.push_back(k);
+      leave_to.push_back(o);
+    } else if (near_other_slab(static_cast<double>(x[i]))) {
+      near.push_back(k);
+    }
+  }
+  particles::HostParticles leaving, staying;
+  store.extract(leave, leaving);
+  store.extract(near, staying);
+  s.migrated = leave.size();
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
+  for (std::size_t i = 0; i < leaving.size(); ++i) append(out[leave_to[i]], leaving, i);
+  for (const auto& o : out) s.bytes_sent += o.size();
+  particles::HostParticles arrived, halo;
+  for (const auto& in : comm::all_to_all(out)) unpack(in, arrived, 0);
+  // Halo copies of what stays and of what just arrived (it may be near another face).
+  for (auto& o : out) o.clear();
+  halo_records(staying, out);
+  halo_records(arrived, out);
   for (const auto& o : out) {
     s.bytes_sent += o.size();
     s.halo_sent += o.size() / sizeof(Record);
   }
-  for (const auto& in : comm::all_to_all(out)) unpack(in, owned, 1);
-  s.halo = owned.size() - s.owned;
+  for (const auto& in : comm::all_to_all(out)) unpack(in, halo, 1);
+  s.halo = halo.size();
+  s.owned = x.size() - drop.size() + arrived.size(); // removed ones included until the sort
+  for (std::size_t i = 0; i < halo.size(); ++i) push(arrived, halo, i, 1);
+  store.remove(drop);
+  store.append(arrived);
   return s;
 }
 

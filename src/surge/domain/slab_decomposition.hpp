@@ -17,6 +17,7 @@ struct ExchangeStats {
   std::size_t bytes_sent = 0; // both, in bytes
   std::size_t owned = 0;      // particles this process owns after the exchange
   std::size_t halo = 0;       // halo copies it holds
+  bool rebalanced = false;    // the faces moved before this exchange
 };
 
 class SlabDecomposition {
@@ -39,20 +40,33 @@ public:
   void balance(const particles::HostParticles& all);
   // Keeps of `all` (held alike by every process) what this process owns, plus halo copies.
   ExchangeStats distribute(particles::HostParticles& all) const;
-  // One step's exchange, in place: halo copies dropped, particles that crossed a face sent
-  // to their new owner, fresh halo copies of the particles within reach of other slabs.
-  ExchangeStats exchange(particles::HostParticles& local) const;
-  // Moves the faces when the busiest process has more than `threshold` times the mean work;
-  // collective. Returns whether they moved (the next exchange then migrates particles).
-  bool rebalance(const particles::HostParticles& local, double threshold);
+  // One step's exchange, in the store: halo copies dropped, particles that crossed a face
+  // sent to their new owner, fresh halo copies of the particles within reach of other
+  // slabs. Only the coordinate along the axis (and a state byte) of every particle comes
+  // to the host; full records only for the particles that leave or are near a face.
+  // With `balance` (collective, every process alike), the faces first move if the busiest
+  // process has more than balance->threshold times the mean work (see Balance).
+  struct Balance {
+    double threshold = 1.1;
+    // Seconds this process computed (not waiting) since the last check; with them each
+    // process's particles are weighted by its measured cost per unit of counted work, so
+    // that faces follow time rather than counts. 0: counts only (fluid 1, boundary 1/2).
+    double busy_seconds = 0;
+  };
+  ExchangeStats exchange(particles::ParticleStore& store, const Balance* balance = nullptr);
   // Rank 0: the owned particles of every process, ordered by id (the same arrays whatever
   // the number of processes); other ranks: empty. Collective.
   [[nodiscard]] particles::HostParticles gather(const particles::HostParticles& local) const;
 
 private:
-  [[nodiscard]] std::vector<double> histogram(const particles::HostParticles& h, bool owned_only) const;
+  // Work per bin along the axis: weight(i) at coordinate x(i) for i < n.
+  template <class X, class W>
+  [[nodiscard]] std::vector<double> histogram(std::size_t n, X x, W weight) const;
+  bool rebalance(const std::vector<Real>& x, const std::vector<std::uint8_t>& state, const Balance& b);
   void cuts_from(const std::vector<double>& hist);
-  ExchangeStats send_halos(particles::HostParticles& owned) const;
+  // Appends to `out[r]` the records of the particles of `h` within reach of slab r != this one.
+  void halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const;
+  [[nodiscard]] bool near_other_slab(double x) const;
   int axis_;
   double lo_, hi_, reach_, bin_;
   std::vector<double> cuts_;

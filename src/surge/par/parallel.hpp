@@ -225,6 +225,25 @@ public:
     }
     size_ = n;
   }
+  // Grows to n keeping the first size() elements (capacity with a quarter to spare, so that
+  // a run's particle count creeping up does not reallocate every step).
+  void resize_keep(std::size_t n) {
+    if (n <= cap_) {
+      size_ = n;
+      return;
+    }
+    Buffer grown(n + n / 4);
+    if (size_ > 0) {
+#if defined(SURGE_BACKEND_CUDA)
+      check_cuda(cudaMemcpy(grown.ptr_, ptr_, size_ * sizeof(T), cudaMemcpyDeviceToDevice), "resize_keep");
+#else
+      const devcheck::Open access;
+      std::copy(ptr_, ptr_ + size_, grown.ptr_);
+#endif
+    }
+    grown.size_ = n;
+    swap(grown);
+  }
   // Shrinks the logical size, keeping contents.
   void truncate(std::size_t n) {
     if (n < size_) size_ = n;
@@ -268,6 +287,18 @@ void upload(Buffer<T>& dst, const std::vector<T>& src) {
 #else
   const devcheck::Open access;
   std::copy(src.begin(), src.end(), dst.data());
+#endif
+}
+// dst[offset, offset + src.size()) <- src; dst must already hold that range.
+template <class T>
+void upload_range(Buffer<T>& dst, const std::vector<T>& src, std::size_t offset) {
+  if (src.empty()) return;
+  if (offset + src.size() > dst.size()) throw std::logic_error("upload_range beyond the buffer");
+#if defined(SURGE_BACKEND_CUDA)
+  check_cuda(cudaMemcpy(dst.data() + offset, src.data(), src.size() * sizeof(T), cudaMemcpyHostToDevice), "upload");
+#else
+  const devcheck::Open access;
+  std::copy(src.begin(), src.end(), dst.data() + offset);
 #endif
 }
 // dst <- src[offset, offset + n)

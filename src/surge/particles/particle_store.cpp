@@ -123,6 +123,91 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   return dropped;
 }
 
+namespace detail {
+// Free functions in a named namespace: nvcc's extended lambdas need an enclosing function
+// with external linkage.
+// out[k] <- field[idx[k]] on the host, through a scratch buffer of the selection's size.
+template <class T>
+void gather_to_host(const par::Buffer<T>& field, const std::uint32_t* idx, int n, std::vector<T>& out) {
+  par::Buffer<T> tmp(static_cast<std::size_t>(n));
+  T* o = tmp.data();
+  const T* in = field.data();
+  par::parallel_for(
+      n, SURGE_LAMBDA(int k) { o[k] = in[idx[k]]; });
+  par::download(out, tmp, static_cast<std::size_t>(n));
+}
+// Grows the field by the host values, keeping what it holds.
+template <class T>
+void append_field(par::Buffer<T>& field, const std::vector<T>& add, std::size_t n_old) {
+  field.resize_keep(n_old + add.size());
+  par::upload_range(field, add, n_old);
+}
+} // namespace detail
+
+void ParticleStore::coordinates(int axis, std::vector<Real>& x, std::vector<std::uint8_t>& state) {
+  const auto n = static_cast<std::size_t>(n_);
+  drho_.resize(n);
+  cls_.resize(n);
+  Real* out = drho_.data();
+  std::uint8_t* st = cls_.data();
+  const Vec3* pos = pos_.data();
+  const std::uint8_t* kind = kind_.data();
+  const std::uint8_t* halo = distributed_ ? halo_.data() : nullptr;
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for(
+      n_, SURGE_LAMBDA(int i) {
+        out[i] = pos[i][axis];
+        st[i] = kind[i] == removed ? 2 : (halo && halo[i] ? 1 : (kind[i] == fluid ? 0 : 3));
+      });
+  par::download(x, drho_, n);
+  par::download(state, cls_, n);
+}
+
+void ParticleStore::extract(const std::vector<std::uint32_t>& idx, HostParticles& out) {
+  const int n = static_cast<int>(idx.size());
+  par::upload(idx_, idx);
+  const std::uint32_t* k = idx_.data();
+  detail::gather_to_host(pos_, k, n, out.pos);
+  detail::gather_to_host(vel_, k, n, out.vel);
+  detail::gather_to_host(vel_prev_, k, n, out.vel_prev);
+  detail::gather_to_host(rho_, k, n, out.rho);
+  detail::gather_to_host(rho_prev_, k, n, out.rho_prev);
+  detail::gather_to_host(press_, k, n, out.press);
+  detail::gather_to_host(kind_, k, n, out.kind);
+  detail::gather_to_host(id_, k, n, out.id);
+  out.halo.assign(idx.size(), 0);
+}
+
+void ParticleStore::remove(const std::vector<std::uint32_t>& idx) {
+  par::upload(idx_, idx);
+  const std::uint32_t* k = idx_.data();
+  std::uint8_t* kind = kind_.data();
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed);
+  par::parallel_for(
+      static_cast<int>(idx.size()), SURGE_LAMBDA(int j) { kind[k[j]] = removed; });
+  add_removed(static_cast<int>(idx.size()));
+}
+
+void ParticleStore::append(const HostParticles& h) {
+  if (h.size() == 0) return;
+  const auto n_old = static_cast<std::size_t>(n_);
+  detail::append_field(pos_, h.pos, n_old);
+  detail::append_field(vel_, h.vel, n_old);
+  detail::append_field(vel_prev_, h.vel_prev, n_old);
+  detail::append_field(rho_, h.rho, n_old);
+  detail::append_field(rho_prev_, h.rho_prev, n_old);
+  detail::append_field(press_, h.press, n_old);
+  detail::append_field(kind_, h.kind, n_old);
+  detail::append_field(id_, h.id, n_old);
+  if (distributed_)
+    detail::append_field(halo_, h.halo.size() == h.size() ? h.halo : std::vector<std::uint8_t>(h.size(), 0), n_old);
+  n_ = static_cast<int>(n_old + h.size());
+  // Rates are recomputed before they are read; these only need the new size.
+  for (auto* b : {&acc_}) b->resize_keep(n_old + h.size());
+  for (auto* b : {&drho_, &vsig_}) b->resize_keep(n_old + h.size());
+  cls_.resize(n_old + h.size());
+}
+
 std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
   for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b += x->bytes();

@@ -65,6 +65,17 @@ public:
   void download(HostParticles& h, bool history = false) const;
 
   [[nodiscard]] int size() const { return n_; }
+
+  // A distributed run's exchange, moving only what crosses between processes (device
+  // memory on the GPU build): every particle's coordinate along `axis` and its state
+  // (0 owned fluid, 1 halo copy, 2 marked Removed, 3 owned wall or body; drho and cls serve as the scratch: both are
+  // rebuilt before they are read again); the particles at `idx`, copied to the host with
+  // their integration history; the particles at `idx` marked Removed (the next sort drops
+  // them); particles appended at the end.
+  void coordinates(int axis, std::vector<Real>& x, std::vector<std::uint8_t>& state);
+  void extract(const std::vector<std::uint32_t>& idx, HostParticles& out);
+  void remove(const std::vector<std::uint32_t>& idx);
+  void append(const HostParticles& h);
   // Allocates pos_prev (scratch of the symplectic scheme; null in views until then).
   void reserve_position_scratch();
   [[nodiscard]] ParticleView view();
@@ -88,6 +99,7 @@ private:
   par::Buffer<std::uint8_t> kind_, cls_, halo_;
   par::Buffer<std::uint32_t> id_;
   par::Buffer<std::uint32_t> tmpu_;
+  par::Buffer<std::uint32_t> idx_; // the exchange's selection
 };
 
 } // namespace surge::particles

@@ -9,10 +9,10 @@
 namespace surge::sim {
 
 namespace {
-// A face moves when the busiest process has 10 % more work than the mean, checked every
-// 50 steps (a dam-break front crosses a slab in thousands of steps).
-constexpr double rebalance_threshold = 1.10;
-constexpr long rebalance_every = 50;
+// A face moves when the busiest process computed 5 % longer than the mean over the last
+// 25 steps (a dam-break front crosses a slab in thousands of steps).
+constexpr double rebalance_threshold = 1.05;
+constexpr long rebalance_every = 25;
 } // namespace
 
 DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling::SphDemCoupling* coupling)
@@ -43,14 +43,28 @@ void DistributedRun::start(particles::HostParticles all) {
 
 void DistributedRun::sync() {
   if (!active() || !stale_) return;
-  const auto t0 = std::chrono::steady_clock::now();
-  particles::HostParticles h;
-  solver_.download(h, true);
-  if (solver_.step_count() % rebalance_every == 0 && slabs_->rebalance(h, rebalance_threshold)) ++traffic_.rebalances;
-  const auto s = slabs_->exchange(h);
-  solver_.replace(h);
   stale_ = false;
+  if (ranks() == 1) return; // nothing to send or receive
+  const auto t0 = std::chrono::steady_clock::now();
+  domain::ExchangeStats s;
+  if (solver_.step_count() % rebalance_every == 0) {
+    // Busy time since the last check: wall time less the time spent in collective calls
+    // (waiting for the others included). The first check, without timings, uses counts.
+    const auto now = std::chrono::steady_clock::now();
+    const double coll = domain::comm::collective_seconds();
+    domain::SlabDecomposition::Balance b;
+    b.threshold = rebalance_threshold;
+    if (balance_checked_)
+      b.busy_seconds = std::max(1e-9, std::chrono::duration<double>(now - last_check_).count() - (coll - last_coll_));
+    s = slabs_->exchange(solver_.exchange_store(), &b);
+    balance_checked_ = true;
+    last_check_ = std::chrono::steady_clock::now();
+    last_coll_ = domain::comm::collective_seconds();
+  } else {
+    s = slabs_->exchange(solver_.exchange_store());
+  }
   ++traffic_.exchanges;
+  if (s.rebalanced) ++traffic_.rebalances;
   traffic_.bytes_sent += static_cast<double>(s.bytes_sent);
   traffic_.halo_now = static_cast<long>(s.halo);
   traffic_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -101,6 +115,13 @@ long DistributedRun::owned_particles() {
 
 double DistributedRun::total(double per_process) { return domain::comm::sum(per_process); }
 
+void DistributedRun::measure_waits() {
+  if (!active()) return;
+  const double mine = domain::comm::collective_seconds();
+  wait_min_ = domain::comm::min(mine);
+  wait_max_ = domain::comm::max(mine);
+}
+
 std::string DistributedRun::summary_json() const {
   std::ostringstream j;
   j.precision(6);
@@ -112,7 +133,8 @@ std::string DistributedRun::summary_json() const {
       << ", \"rebalances\": " << traffic_.rebalances << ", \"rank0\": {\"exchanges\": " << traffic_.exchanges
       << ", \"exchange_seconds\": " << traffic_.seconds
       << ", \"bytes_sent_per_exchange\": " << traffic_.bytes_sent / steps
-      << ", \"halo_particles\": " << traffic_.halo_now << "}";
+      << ", \"halo_particles\": " << traffic_.halo_now << "}, \"collective_seconds\": {\"min\": " << wait_min_
+      << ", \"max\": " << wait_max_ << "}";
   }
   j << "}";
   return j.str();

@@ -8,6 +8,7 @@
 #include "surge/domain/slab_decomposition.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
+#include <chrono>
 #include <optional>
 
 namespace surge::sim {
@@ -47,6 +48,9 @@ public:
     long halo_now = 0;
   };
   [[nodiscard]] Traffic traffic() const { return traffic_; }
+  // Collective: the least and most time any process spent in collective calls (the
+  // busiest process waits least; the difference is the load imbalance).
+  void measure_waits();
   [[nodiscard]] std::string summary_json() const;
 
 private:
@@ -55,6 +59,11 @@ private:
   Distribution dist_;
   bool stale_ = false;
   Traffic traffic_;
+  double wait_min_ = 0, wait_max_ = 0;
+  // The last balance check: when, and the collective seconds then.
+  bool balance_checked_ = false;
+  std::chrono::steady_clock::time_point last_check_{};
+  double last_coll_ = 0;
 };
 
 } // namespace surge::sim

@@ -249,6 +249,7 @@ int run(const Case& c, const RunOptions& opt) {
     const double loop_wall = std::chrono::duration<double>(Clock::now() - loop0).count();
     // Collective: every process takes part, rank 0 writes (RSS summed over processes).
     const long n_now = dist.owned_particles();
+    dist.measure_waits();
     const double rss = dist.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
     if (root)
       io::write_file_atomic((out / "summary.json").string(),

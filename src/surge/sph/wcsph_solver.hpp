@@ -63,7 +63,13 @@ public:
   // ghost. A process holding exact copies of everything within this reach of the particles
   // it owns advances them exactly as one process would.
   [[nodiscard]] double dependency_reach() const;
-  // Replaces the particles (a distributed run's exchange); the step count is kept.
+  // The store, for a distributed run's halo exchange (domain::SlabDecomposition), which
+  // adds and removes particles: rates are recomputed before they are read again.
+  particles::ParticleStore& exchange_store() {
+    fresh_ = false;
+    return store_;
+  }
+  // Replaces the particles (a distributed run's start); the step count is kept.
   void replace(const particles::HostParticles& h);
   // Particles this process owns (all of them unless distributed).
   [[nodiscard]] int owned_count();
