@@ -80,6 +80,14 @@ check(s3["particles"]["now"] == s1["particles"]["now"], "the same particle count
 for n in (2, 3):
     same_files(dam[1], dam[n], f"dam break, 1 and {n} processes")
 
+# --- wall-clock checkpoints between outputs (every 0.2 s of wall time): a gather every
+# process must join, decided together although each has its own clock
+out = os.path.join(WORK, "dambreak_wallck")
+r = mpi(3, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--quiet", "--set", "time.end=0.03",
+            "--set", "time.output_every=0.015", "--set", "time.checkpoint_every_wall=0.2"], timeout=300)
+check(r.returncode == 0, f"3 processes with wall-clock checkpoints every 0.2 s finish (exit {r.returncode})")
+same_files(dam[1], out, "dam break with wall-clock checkpoints on 3 processes, against 1 without")
+
 # --- the coupled slide at dp = 0.04 m: spheres entering the water, DEM on every process
 slide_sets = ["--set", "dp=0.04", "--set", "time.end=0.075", "--set", "time.output_every=0.025"]
 slide = runs_on([1, 2, 3], "slide", os.path.join(CASES, "slide_tsunami.yaml"), slide_sets)

@@ -84,11 +84,11 @@ void DistributedRun::gather(particles::HostParticles& out, bool history) {
   }
 }
 
-void DistributedRun::combine(sph::StepStats& s, bool& stop) const {
+void DistributedRun::combine(sph::StepStats& s, bool& stop, bool& checkpoint_due) const {
   if (!active()) return;
-  double n[4] = {static_cast<double>(s.removed_domain), static_cast<double>(s.removed_density),
-                 static_cast<double>(s.non_finite), stop ? 1.0 : 0.0};
-  domain::comm::sum(n, 4);
+  double n[5] = {static_cast<double>(s.removed_domain), static_cast<double>(s.removed_density),
+                 static_cast<double>(s.non_finite), stop ? 1.0 : 0.0, checkpoint_due ? 1.0 : 0.0};
+  domain::comm::sum(n, 5);
   const bool where = s.removed_domain + s.removed_density > 0;
   const double inf = std::numeric_limits<double>::infinity();
   double box[6];
@@ -101,6 +101,7 @@ void DistributedRun::combine(sph::StepStats& s, bool& stop) const {
   s.removed_density = static_cast<int>(n[1]);
   s.non_finite = static_cast<int>(n[2]);
   stop = n[3] > 0;
+  checkpoint_due = n[4] > 0;
   if (s.removed_domain + s.removed_density > 0)
     for (int k = 0; k < 3; ++k) {
       s.removed_lo[k] = static_cast<Real>(box[k]);

@@ -36,8 +36,9 @@ public:
   // the solver's particles as stored.
   void gather(particles::HostParticles& out, bool history);
   // Sums the step's removal counts over processes and merges where they were; `stop`
-  // (Ctrl-C seen by any process) becomes true everywhere.
-  void combine(sph::StepStats& s, bool& stop) const;
+  // (Ctrl-C seen by any process) and `checkpoint_due` (a wall-clock checkpoint due on any
+  // process's clock) become true everywhere.
+  void combine(sph::StepStats& s, bool& stop, bool& checkpoint_due) const;
   // Over processes: owned particles, a sum of per-process values.
   [[nodiscard]] long owned_particles();
   [[nodiscard]] static double total(double per_process);

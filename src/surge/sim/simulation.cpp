@@ -388,7 +388,9 @@ int run(const Case& c, const RunOptions& opt) {
     if (cp) cp->coupling->after_fluid_step(solver, *cp->dem, s.dt);
     t += s.dt;
     stop = opt.stop && *opt.stop;
-    dist.combine(s, stop);
+    // Wall-clock checkpoints are collective (a gather): every process must agree to write one.
+    bool checkpoint_due = wall_checkpoints.due();
+    dist.combine(s, stop, checkpoint_due);
     for (Totals* x : {&tot, &since_output}) {
       x->removed_domain += s.removed_domain;
       x->removed_density += s.removed_density;
@@ -430,7 +432,7 @@ int run(const Case& c, const RunOptions& opt) {
     if (t >= next_out - eps) {
       next_out += c.time.output_every; // before the checkpoint is written: a restart continues from here
       write_output();
-    } else if (wall_checkpoints.due()) {
+    } else if (checkpoint_due) {
       save_progress(); // no frame
     }
     const auto now = Clock::now();
