@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # One command for the benchmarks: builds the cpu preset if needed, then reports
 # particle-steps per second, the time per phase (phases_ms_share), and
-# bytes per particle on 1 and 2 threads. Results: benchmarks/results.jsonl
+# bytes per particle on 1 and 2 threads; the machine's memory bandwidth (STREAM triad)
+# beside them; and the DEM side by side with LAMMPS (Debian's lammps package, installed
+# if missing) on the same lattice case, with their ratio from the same run, so that a
+# noisy machine cannot fake a gain. Results: benchmarks/results.jsonl
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -x build/cpu/benchmarks/bench_sph ] || { cmake --preset cpu && cmake --build --preset cpu -j"$(nproc)"; }
+[ -x build/cpu/benchmarks/bench_sph ] && [ -x build/cpu/benchmarks/bench_stream ] ||
+  { cmake --preset cpu && cmake --build --preset cpu -j"$(nproc)"; }
 out=benchmarks/results.jsonl
 : > "$out"
+# Memory bandwidth, 1 and 2 threads: SPH throughput compares across machines per GB/s.
+for threads in 1 2; do build/cpu/benchmarks/bench_stream $threads | tee -a "$out"; done
 for threads in 1 2; do
   # 3D dam break with a column, about 1.3e5 fluid particles (dp = 8.5 mm).
   build/cpu/benchmarks/bench_sph cases/bench_dambreak.yaml 40 $threads | tee -a "$out"
@@ -21,4 +27,32 @@ for threads in 1 2; do
   for n in 0 100 1000 10000; do build/cpu/benchmarks/bench_coupling $n 20 $threads | tee -a "$out"; done
   # Neighbour search alone, 1e6 particles.
   build/cpu/benchmarks/bench_neighbour 1000000 $threads | tee -a "$out"
+done
+
+# DEM against LAMMPS, one thread each, the same lattice case (bench_dem's sizes:
+# nx = 2 floor(cbrt(N/2)), ny = nx/2, nz = N / (nx ny)), measured back to back.
+if ! command -v lmp >/dev/null 2>&1; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get install -y -qq --no-install-recommends lammps
+fi
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for n in 20000 100000; do
+  surge_row=$(build/cpu/benchmarks/bench_dem $n 2000 1)
+  read -r nx ny nz < <(/usr/bin/python3 -c "import math; n=$n; nx=int(math.pow(n/2, 1/3)+1e-9)*2; ny=nx//2; print(nx, ny, n//(nx*ny))")
+  OMP_NUM_THREADS=1 lmp -in benchmarks/lammps_dem_lattice.in -var nx "$nx" -var ny "$ny" -var nz "$nz" -var steps 2000 \
+    -log none -screen "$tmp/lmp_$n.txt" >/dev/null
+  /usr/bin/python3 - "$surge_row" "$tmp/lmp_$n.txt" <<'PY' | tee -a "$out"
+import json, re, sys
+surge = json.loads(sys.argv[1])
+loop = [l for l in open(sys.argv[2]) if l.startswith("Loop time")][-1]
+t, steps, atoms = re.match(r"Loop time of ([0-9.e+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", loop).groups()
+lmp = int(steps) * int(atoms) / float(t)
+print(json.dumps({"bench": "dem_vs_lammps", "spheres": surge["spheres"], "lammps_atoms": int(atoms), "threads": 1,
+                  "surge_sphere_steps_per_s": surge["sphere_steps_per_s"], "lammps_sphere_steps_per_s": lmp,
+                  "surge_over_lammps": surge["sphere_steps_per_s"] / lmp,
+                  "surge_contacts_per_sphere": surge["contacts_per_sphere"],
+                  "surge_bytes_per_sphere": surge["bytes_per_sphere"]}))
+PY
 done
