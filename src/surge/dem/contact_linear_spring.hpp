@@ -39,7 +39,15 @@ struct NormalSpringDashpot {
 
   SURGE_HD NormalSpringDashpot() = default;
   SURGE_HD NormalSpringDashpot(Real kn_, Real mstar, Real restitution)
-      : kn(kn_), cn(2 * damping_ratio(restitution) * std::sqrt(mstar * kn_)) {}
+      : NormalSpringDashpot(with_ratio(kn_, mstar, damping_ratio(restitution))) {}
+  // From the damping ratio beta = damping_ratio(e) itself: a solver computes it once per
+  // material, not a logarithm per contact and step.
+  [[nodiscard]] SURGE_HD static NormalSpringDashpot with_ratio(Real kn_, Real mstar, Real beta) {
+    NormalSpringDashpot law;
+    law.kn = kn_;
+    law.cn = 2 * beta * std::sqrt(mstar * kn_);
+    return law;
+  }
 
   // Normal force along n (positive pushes apart) for overlap un and overlap rate dun
   // (dun > 0 while approaching). Unbonded contacts are clipped at zero.

@@ -27,7 +27,7 @@ struct PairInput {
   Real un;     // overlap
   Real ra, rb; // radii (rb: 0 for a plane)
   Vec3 va, wa, vb, wb;
-  Real mstar, kn, ks, cn_e; // reduced mass, stiffnesses, restitution
+  Real mstar, kn, ks, beta; // reduced mass, stiffnesses, damping ratio of the lower restitution
   Real tan_phi;
   Real k_roll, k_roll_max, k_twist, k_twist_max;
   Real rmin;             // r' = min(r_A, r_B)
@@ -40,7 +40,7 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
   const Vec3 cb = n * (in.rb - in.un / 2);    // ... relative to B's centre
   const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
   const Real dun = -dot(vrel, n);
-  const NormalSpringDashpot law(in.kn, in.mstar, in.cn_e);
+  const NormalSpringDashpot law = NormalSpringDashpot::with_ratio(in.kn, in.mstar, in.beta);
   bool bonded = old.bonded != 0, broke = false;
   Real fn = law.force(in.un, dun, bonded);
   const Real area = in.rmin * in.rmin;
@@ -88,7 +88,8 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
 SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
   in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
   in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
-  in.cn_e = ma.restitution < mb.restitution ? ma.restitution : mb.restitution;
+  // damping_ratio falls as e rises: the lower restitution's ratio is the larger one.
+  in.beta = ma.damping > mb.damping ? ma.damping : mb.damping;
   in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
   in.k_roll = (ma.k_roll + mb.k_roll) / 2;
   in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
@@ -172,12 +173,109 @@ SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Materia
   return in;
 }
 
-void contacts(const DemView& v, const neighbour::GridView& g, const Material* mats, const Plane* planes, int n_planes,
-              const WallTriangle* tris, int n_tris, Real reach, Real dt) {
+// The pair terms of sphere i with its partner j (sorted indices), from the slot i holds
+// for the pair (its own side's copy of the history); returns the slot for i's side.
+SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, int i, int j, Real dist,
+                                       const ContactSlot& mine, bool& i_is_a, Real dt) {
+  i_is_a = v.id[i] < v.id[j];
+  const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+  const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
+  PairInput in;
+  const Vec3 dab = v.pos[a] - v.pos[b];
+  in.n = dab * (1 / dist);
+  in.un = v.radius[a] + v.radius[b] - dist;
+  in.ra = v.radius[a];
+  in.rb = v.radius[b];
+  in.va = v.vel[a];
+  in.wa = v.omega[a];
+  in.vb = v.vel[b];
+  in.wb = v.omega[b];
+  in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
+  mix_materials(ma, mb, in.ra, in.rb, in);
+  return pair_terms(in, i_is_a ? mine : negated(mine), dt);
+}
+
+// Lists each sphere's partners: the spheres within r_i + r_j + skin, and those it is
+// bonded to (within the grid's reach). A pair's history lives in its A sphere's row (old
+// rows travelled with their spheres through the sort), found by partner id; both spheres
+// read that same slot to decide, so they list each other or neither. The order is the
+// grid's (cells, then sorted index), the same on any thread count.
+void build_list(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        const ContactSlot* old_row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
-        ContactSlot* new_row = v.hist_new + static_cast<std::size_t>(i) * max_contacts;
+        const ContactSlot* old_row = old_hist + static_cast<std::size_t>(i) * max_contacts;
+        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
+        std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
+        const Vec3 xi = v.pos[i];
+        const Real ri = v.radius[i];
+        int cnt = 0;
+        neighbour::for_each_neighbour(g, xi, search * search, [&](int j, const Vec3& d, Real r2) {
+          if (j == i || cnt >= max_contacts) return;
+          const std::uint32_t idj = v.id[j];
+          const bool i_is_a = v.id[i] < idj;
+          const ContactSlot* s = i_is_a ? find_slot(old_row, idj)
+                                        : find_slot(old_hist + static_cast<std::size_t>(j) * max_contacts, v.id[i]);
+          const bool bonded = s != nullptr && s->bonded != 0;
+          const Real cut = ri + v.radius[j] + skin;
+          if (!(r2 < cut * cut) && !bonded) return;
+          (void)d;
+          ContactSlot slot = s && i_is_a ? *s : ContactSlot{}; // B-side slots hold no history
+          slot.partner = idj;
+          row[cnt] = slot;
+          nb[cnt] = static_cast<std::uint32_t>(j);
+          ++cnt;
+        });
+        v.nnbr[i] = static_cast<std::uint32_t>(cnt);
+        for (int k = cnt; k < max_contacts; ++k) {
+          row[k] = ContactSlot{};
+          nb[k] = no_partner;
+        }
+      });
+}
+
+// Pass 1: each pair once, by its A sphere (lower id), from the A-side history it holds:
+// the history is updated in place and the forces written beside it.
+void pair_pass(const DemView& v, const Material* mats, Real dt) {
+  par::parallel_for_uneven(
+      v.n, SURGE_LAMBDA(int i) {
+        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
+        PairForce* out = v.pair + static_cast<std::size_t>(i) * max_contacts;
+        const std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
+        const int listed = static_cast<int>(v.nnbr[i]);
+        const Vec3 xi = v.pos[i];
+        const Real ri = v.radius[i];
+        const std::uint32_t idi = v.id[i];
+        for (int k = 0; k < listed; ++k) {
+          const int j = static_cast<int>(nb[k]);
+          if (idi > v.id[j]) continue; // the partner is A: it evaluates the pair
+          const Real dist = norm(xi - v.pos[j]);
+          const bool held = row[k].bonded != 0; // a bond acts across a gap too
+          const std::uint32_t partner = row[k].partner;
+          if ((!(dist < ri + v.radius[j]) && !held) || dist <= 0) {
+            // Not touching: the contact's history ends (the partner stays listed).
+            row[k] = ContactSlot{};
+            row[k].partner = partner;
+            out[k] = PairForce{};
+            continue;
+          }
+          bool i_is_a = true;
+          const PairResult r = sphere_pair(v, mats, i, j, dist, row[k], i_is_a, dt);
+          row[k] = r.slot;
+          row[k].partner = partner;
+          out[k] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
+        }
+      });
+}
+
+// Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
+// B-side ones negated, read at the A side's slot), then its wall contacts.
+void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, int n_planes, const WallTriangle* tris,
+                 int n_tris, Real dt) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
+        const std::uint32_t* nb = v.nbr + base;
+        const int listed = static_cast<int>(v.nnbr[i]);
         int used = 0;
         std::uint32_t broken = 0;
         Vec3 f{}, t{};
@@ -185,59 +283,41 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
         const Real ri = v.radius[i];
         const Material mi = mats[v.material[i]];
         const std::uint32_t idi = v.id[i];
-        auto store = [&](std::uint32_t partner, const ContactSlot& s) {
-          if (used < max_contacts) {
-            new_row[used] = s;
-            new_row[used].partner = partner;
-            ++used;
-          }
-        };
-        neighbour::for_each_neighbour(g, xi, reach * reach, [&](int j, const Vec3&, Real) {
-          if (j == i) return;
-          const Real rj = v.radius[j];
-          const Vec3 d0 = xi - v.pos[j];
-          const Real dist = norm(d0);
-          const std::uint32_t idj = v.id[j];
-          const ContactSlot* s = find_slot(old_row, idj);
-          const bool held = s != nullptr && s->bonded != 0; // a bond acts across a gap too
-          if ((!(dist < ri + rj) && !held) || dist <= 0) return;
-          const bool i_is_a = idi < idj;
-          const int a = i_is_a ? i : j, b = i_is_a ? j : i;
-          const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
-          PairInput in;
-          const Vec3 dab = v.pos[a] - v.pos[b];
-          in.n = dab * (1 / dist);
-          in.un = v.radius[a] + v.radius[b] - dist;
-          in.ra = v.radius[a];
-          in.rb = v.radius[b];
-          in.va = v.vel[a];
-          in.wa = v.omega[a];
-          in.vb = v.vel[b];
-          in.wb = v.omega[b];
-          in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          mix_materials(ma, mb, in.ra, in.rb, in);
-          ContactSlot old_a{};
-          if (s) old_a = i_is_a ? *s : negated(*s);
-          const PairResult r = pair_terms(in, old_a, dt);
-          if (r.broke) ++broken;
+        for (int k = 0; k < listed; ++k) {
+          const bool i_is_a = idi < v.id[nb[k]];
+          const std::uint32_t at = i_is_a ? static_cast<std::uint32_t>(base + k) : v.mirror[base + k];
+          if (at == no_partner) continue; // the partner's list was full
+          const PairForce& pf = v.pair[at];
+          if (!(pf.flags & 1U)) continue;
+          ++used;
+          if (pf.flags & 2U) ++broken;
           if (i_is_a) {
-            f += r.force_a;
-            t += r.torque_a;
-            store(idj, r.slot);
+            f += pf.force_a;
+            t += pf.torque_a;
           } else {
-            f -= r.force_a;
-            t += r.torque_b;
-            store(idj, negated(r.slot));
+            f -= pf.force_a;
+            t += pf.torque_b;
           }
-        });
-        // A wall contact: unit normal from the wall to the sphere, overlap, partner id, material.
+        }
+        // Wall contacts: history by partner id in the sphere's few wall slots.
+        ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
+        ContactSlot old_w[max_wall_slots];
+        for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
+        int wused = 0;
         auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
           const PairInput in = wall_pair_input(v, i, mi, mats[material], n, un);
-          const ContactSlot* s = find_slot(old_row, partner);
-          const PairResult r = pair_terms(in, s ? *s : ContactSlot{}, dt);
+          ContactSlot s{};
+          for (int k = 0; k < max_wall_slots; ++k)
+            if (old_w[k].partner == partner) s = old_w[k];
+          const PairResult r = pair_terms(in, s, dt);
           f += r.force_a;
           t += r.torque_a;
-          store(partner, r.slot);
+          ++used;
+          if (wused < max_wall_slots) {
+            wrow[wused] = r.slot;
+            wrow[wused].partner = partner;
+            ++wused;
+          }
         };
         for (int k = 0; k < n_planes; ++k) {
           const Plane pl = planes[k];
@@ -251,13 +331,44 @@ void contacts(const DemView& v, const neighbour::GridView& g, const Material* ma
             wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
                  triangle_partner | static_cast<std::uint32_t>(touched[k].tri), tris[touched[k].tri].material);
         }
+        for (int k = wused; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
         v.force[i] = f;
         v.torque[i] = t;
         v.broken[i] += broken;
         v.ncontact[i] = static_cast<std::uint32_t>(used);
-        // Only the slots no contact filled need clearing (stored slots were written whole).
-        for (int k = used; k < max_contacts; ++k) new_row[k] = ContactSlot{};
       });
+}
+
+// For each B-side entry (the partner has the lower id), the index of the partner's slot
+// that lists this sphere; no_partner when the partner's list was full.
+void link_mirrors(const DemView& v) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
+        const std::uint32_t idi = v.id[i];
+        for (int k = 0; k < max_contacts; ++k) {
+          std::uint32_t at = no_partner;
+          if (k < static_cast<int>(v.nnbr[i])) {
+            const std::uint32_t j = v.nbr[base + k];
+            const std::size_t jb = static_cast<std::size_t>(j) * max_contacts;
+            for (std::uint32_t q = 0; q < v.nnbr[j]; ++q)
+              if (v.nbr[jb + q] == static_cast<std::uint32_t>(i)) at = static_cast<std::uint32_t>(jb + q);
+          }
+          (void)idi;
+          v.mirror[base + k] = at;
+        }
+      });
+}
+
+// The largest squared displacement of any sphere since the list was built.
+Real max_displacement2(const DemView& v, const Vec3* built) {
+  return par::parallel_reduce(
+      v.n, Real(0),
+      SURGE_LAMBDA(int i) {
+        const Vec3 d = v.pos[i] - built[i];
+        return dot(d, d);
+      },
+      par::Max{});
 }
 
 // Force and moment (about `about`) that the spheres exert on one wall: plane `plane`
@@ -270,11 +381,11 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
       v.n, WallLoad{},
       SURGE_LAMBDA(int i) {
         WallLoad out;
-        const ContactSlot* row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         const Material mi = mats[v.material[i]];
-        for (int k = 0; k < max_contacts; ++k) {
+        for (int k = 0; k < max_wall_slots; ++k) {
           const std::uint32_t partner = row[k].partner;
           if (partner == no_partner) continue;
           Vec3 n{};
@@ -310,22 +421,21 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
       SumWallLoads{});
 }
 
-// Bonds each sphere to every neighbour of a bonded material closer than `gap`.
-void bond(const DemView& v, const neighbour::GridView& g, const Material* mats, Real reach, Real gap) {
+// Bonds each sphere to every listed partner of a bonded material closer than `gap`
+// (the list holds every sphere within r_i + r_j + skin, and gap < skin); the bond is
+// marked in the A sphere's slot, which holds the pair's history.
+void bond(const DemView& v, const Material* mats, Real gap) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        ContactSlot* row = v.hist_old + static_cast<std::size_t>(i) * max_contacts;
         if (!mats[v.material[i]].bonded) return;
-        int used = 0;
-        while (used < max_contacts && row[used].partner != no_partner) ++used;
-        neighbour::for_each_neighbour(g, v.pos[i], reach * reach, [&](int j, const Vec3& d, Real) {
-          if (j == i || !mats[v.material[j]].bonded || used >= max_contacts) return;
-          if (norm(d) >= v.radius[i] + v.radius[j] + gap) return;
-          ContactSlot s{};
-          s.partner = v.id[j];
-          s.bonded = 1;
-          row[used++] = s;
-        });
+        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
+        const std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
+        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
+          const int j = static_cast<int>(nb[k]);
+          if (v.id[i] > v.id[j] || !mats[v.material[j]].bonded) continue;
+          if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) continue;
+          row[k].bonded = 1;
+        }
       });
 }
 
@@ -376,6 +486,7 @@ void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
 DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi)
     : materials_host_(std::move(materials)), gravity_(gravity), lo_(lo), hi_(hi) {
   if (materials_host_.empty()) throw std::invalid_argument("DEM needs at least one material");
+  for (auto& m : materials_host_) m.damping = damping_ratio(m.restitution);
   par::upload(materials_, materials_host_);
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
@@ -436,10 +547,22 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::fill(broken_, 0U);
   ncontact_.resize(s.size());
   par::fill(ncontact_, 0U);
-  hist_old_.resize(s.size() * max_contacts);
-  hist_new_.resize(s.size() * max_contacts);
-  par::fill(hist_old_, ContactSlot{});
-  grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(reach(), Real(1e-6))));
+  hist_.resize(s.size() * max_contacts);
+  par::fill(hist_, ContactSlot{});
+  wall_hist_.resize(s.size() * max_wall_slots);
+  par::fill(wall_hist_, ContactSlot{});
+  nbr_.resize(s.size() * max_contacts);
+  par::fill(nbr_, no_partner);
+  nnbr_.resize(s.size());
+  par::fill(nnbr_, 0U);
+  mirror_.resize(s.size() * max_contacts);
+  par::fill(mirror_, no_partner);
+  pair_.resize(s.size() * max_contacts);
+  par::fill(pair_, PairForce{});
+  pos_built_.resize(s.size());
+  list_valid_ = false;
+  skin_ = Real(0.1) * max_radius_;
+  grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
 }
 
 DemView DemSolver::view() {
@@ -455,8 +578,12 @@ DemView DemSolver::view() {
           inertia_.data(),
           material_.data(),
           id_.data(),
-          hist_old_.data(),
-          hist_new_.data(),
+          hist_.data(),
+          nbr_.data(),
+          nnbr_.data(),
+          mirror_.data(),
+          pair_.data(),
+          wall_hist_.data(),
           broken_.data(),
           ncontact_.data(),
           fixed_.data(),
@@ -477,7 +604,8 @@ Real DemSolver::critical_dt(Real factor) const {
 }
 
 void DemSolver::sort_spheres() {
-  // History rows travel with their sphere (they are keyed by partner id).
+  // History rows travel with their sphere (they are keyed by partner id); the list's
+  // partner indices do not survive the sort: rebuild_list makes new ones.
   grid_.sort(pos_.data(), nullptr, n_);
   const std::uint32_t* perm = grid_.permutation();
   par::gather(pos_, tmp3_, perm, n_);
@@ -491,26 +619,45 @@ void DemSolver::sort_spheres() {
   par::gather(fixed_, tmpb_, perm, n_);
   par::gather(id_, tmpu_, perm, n_);
   par::gather(broken_, tmpu_, perm, n_);
-  par::gather(hist_old_, tmph_, perm, n_, max_contacts);
+  par::gather(hist_, tmph_, perm, n_, max_contacts);
+  par::gather(wall_hist_, tmph_, perm, n_, max_wall_slots);
   grid_.build_cell_start(n_);
+}
+
+void DemSolver::rebuild_list() {
+  sort_spheres();
+  // The sorted old rows go to the scratch; the new rows, one per listed partner, are
+  // written into hist_.
+  hist_.swap(tmph_);
+  hist_.resize(static_cast<std::size_t>(n_) * max_contacts);
+  const DemView v = view();
+  detail::build_list(v, grid_.view(v.pos), tmph_.data(), list_reach(), skin());
+  detail::link_mirrors(v);
+  par::copy(pos_built_, pos_);
+  list_valid_ = true;
+}
+
+bool DemSolver::list_stale() {
+  if (!list_valid_) return true;
+  const Real half = skin() / 2;
+  return detail::max_displacement2(view(), pos_built_.data()) > half * half;
 }
 
 void DemSolver::step(Real dt) {
   {
     const auto t = par::timed(par::Phase::DemSort);
-    sort_spheres();
+    if (list_stale()) rebuild_list();
   }
   const DemView v = view();
   {
     const auto t = par::timed(par::Phase::DemContacts);
-    detail::contacts(v, grid_.view(v.pos), materials_.data(), planes_.data(), n_planes_, triangles_.data(),
-                     n_triangles_, reach(), dt);
+    detail::pair_pass(v, materials_.data(), dt);
+    detail::sphere_pass(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_, dt);
   }
   {
     const auto t = par::timed(par::Phase::DemIntegrate);
     detail::integrate(v, gravity_, local_damping_, dt);
   }
-  hist_old_.swap(hist_new_);
 }
 
 namespace {
@@ -557,13 +704,21 @@ void DemSolver::for_each_state_buffer(Self& s, F&& f) {
   f(s.torque_, 1);
   f(s.ext_force_, 1);
   f(s.ext_torque_, 1);
-  f(s.hist_old_, max_contacts);
+  f(s.hist_, max_contacts);
+  f(s.wall_hist_, max_wall_slots);
+  f(s.nbr_, max_contacts);
+  f(s.nnbr_, 1);
+  f(s.mirror_, max_contacts);
+  f(s.pos_built_, 1);
 }
 
 std::string DemSolver::save() const {
   std::string out;
   const auto n = static_cast<std::uint64_t>(n_);
   out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  // The list as it stands (a restored run rebuilds it exactly when the straight run does).
+  const std::uint64_t valid = list_valid_ ? 1 : 0;
+  out.append(reinterpret_cast<const char*>(&valid), sizeof valid);
   for_each_state_buffer(*this, [&](const auto& b, int) { save_buffer(out, b); });
   return out;
 }
@@ -573,12 +728,16 @@ void DemSolver::restore(const std::string& bytes) {
   if (bytes.size() < sizeof n) throw std::invalid_argument("DEM state truncated");
   std::memcpy(&n, bytes.data(), sizeof n);
   if (n != static_cast<std::uint64_t>(n_)) throw std::invalid_argument("DEM state holds another number of spheres");
-  std::size_t pos = sizeof n;
+  std::uint64_t valid = 0;
+  if (bytes.size() < 2 * sizeof n) throw std::invalid_argument("DEM state truncated");
+  std::memcpy(&valid, bytes.data() + sizeof n, sizeof valid);
+  if (valid > 1) throw std::invalid_argument("DEM state of an older surge (before neighbour lists)");
+  std::size_t pos = 2 * sizeof n;
   const auto N = static_cast<std::size_t>(n_);
   for_each_state_buffer(*this,
                         [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
-  hist_new_.resize(N * max_contacts);
+  list_valid_ = valid == 1;
 }
 
 void DemSolver::rigid_states(par::Buffer<RigidState>& out) {
@@ -607,13 +766,17 @@ std::vector<T> by_id(const std::vector<T>& v, const std::vector<std::uint32_t>& 
 } // namespace
 
 long DemSolver::bond_touching(Real gap) {
-  sort_spheres();
+  if (!(gap < skin_)) { // the list must hold every pair within the gap
+    skin_ = 2 * gap;
+    grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
+  }
+  rebuild_list();
   const DemView v = view();
-  detail::bond(v, grid_.view(v.pos), materials_.data(), reach(), gap);
-  const auto h = par::download(hist_old_);
-  long bonds = 0;
+  detail::bond(v, materials_.data(), gap);
+  const auto h = par::download(hist_);
+  long bonds = 0; // marked on the A side only
   for (const auto& s : h) bonds += s.bonded ? 1 : 0;
-  return bonds / 2;
+  return bonds;
 }
 
 WallLoad DemSolver::wall_load(int plane, int mesh, Vec3 about) {
@@ -654,7 +817,7 @@ std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_)
 std::vector<Vec3> DemSolver::torques() const { return by_id(par::download(torque_), par::download(id_)); }
 std::vector<std::uint32_t> DemSolver::intact_bonds() const {
   const auto id = par::download(id_);
-  const auto hist = par::download(hist_old_);
+  const auto hist = par::download(hist_);
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < id.size(); ++i)
     for (int k = 0; k < max_contacts; ++k) {

@@ -5,6 +5,15 @@
 // canonical order (lower id first) and negated on the other side, so both sides agree
 // bit for bit and results do not depend on the thread count.
 //
+// Neighbour list with a skin: each sphere lists the spheres within r_i + r_j + skin (and
+// its bonded partners). A step has two passes: each pair is evaluated once, by its A
+// sphere (lower id), which updates the pair's history in its own slot and writes the
+// pair's forces beside it; then each sphere sums the forces of its listed pairs in list
+// order, its A-side pairs with their sign and its B-side ones through the slot index of
+// the partner's entry (found when the list was built). No grid walk, no slot search, no
+// sort per step, no atomics. The spheres are sorted and the lists rebuilt (histories
+// carried over by partner id) only when a sphere has moved more than half the skin.
+//
 // External forces (the fluid's, SPEC §4) are held per sphere id and added to the
 // contact forces at every step until replaced.
 #pragma once
@@ -13,6 +22,7 @@
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,6 +40,7 @@ struct Material {
   bool bonded = false;               // touching spheres of two bonded materials are bonded at the start (CFM)
   Real bond_cn = 0;                  // bond tensile strength C_n [Pa]: breaks beyond C_n r'^2 in tension
   Real bond_cs = 0;                  // bond shear strength C_s [Pa]: breaks beyond |F_n| tan(phi) + C_s r'^2
+  Real damping = 0;                  // derived by the solver: damping_ratio(restitution)
 };
 
 // An infinite plane wall: points x with dot(x - point, normal) >= 0 are inside.
@@ -53,7 +64,8 @@ struct Sphere {
   bool fixed = false; // held in place (still feels contacts and the fluid, which are reported)
 };
 
-inline constexpr int max_contacts = 16; // history slots per sphere
+inline constexpr int max_contacts = 16;  // listed partner spheres (with history) per sphere
+inline constexpr int max_wall_slots = 4; // wall contacts (planes, mesh points) with history per sphere
 inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
 inline constexpr std::uint32_t plane_partner = 0x80000000U;    // partner id of plane k: plane_partner | k
 inline constexpr std::uint32_t triangle_partner = 0x40000000U; // partner id of wall triangle t
@@ -66,6 +78,12 @@ struct ContactSlot {
   Vec3 roll{};              // accumulated rolling rotation (A relative to B)
   Vec3 twist{};             // accumulated twisting rotation
   std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
+};
+
+// A listed pair's evaluation by its A sphere: force on A, torques about A's and B's centres.
+struct PairForce {
+  Vec3 force_a{}, torque_a{}, torque_b{};
+  std::uint32_t flags = 0; // 1: touching (or bonded), 2: its bond broke this step
 };
 
 // Force and moment the spheres exert on a wall (a gauge).
@@ -85,7 +103,12 @@ struct DemView {
   Real *radius, *mass, *inertia;
   std::uint8_t* material;
   std::uint32_t* id;
-  ContactSlot *hist_old, *hist_new;
+  ContactSlot* hist;                  // max_contacts per sphere: the listed pairs' A-side history
+  std::uint32_t* nbr;                 // max_contacts per sphere: the listed partners' indices
+  std::uint32_t* nnbr;                // listed partners per sphere
+  std::uint32_t* mirror;              // max_contacts per sphere: for a B-side entry, the A side's slot index
+  PairForce* pair;                    // max_contacts per sphere: the A side's evaluation of each pair
+  ContactSlot* wall_hist;             // max_wall_slots per sphere: wall contacts, by partner id
   std::uint32_t* broken;              // bonds this sphere has lost so far (each bond counts on both spheres)
   std::uint32_t* ncontact;            // contacts of the last step
   std::uint8_t* fixed;                // 1: not integrated
@@ -142,8 +165,16 @@ private:
   template <class Self, class F>
   static void for_each_state_buffer(Self& s, F&& f);
   void sort_spheres();
+  // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
+  void rebuild_list();
+  // Whether some sphere has moved more than half the skin since the list was built.
+  [[nodiscard]] bool list_stale();
   // Neighbour search radius: touching spheres, and bonded ones pulled slightly apart.
   [[nodiscard]] Real reach() const { return Real(2.1) * max_radius_; }
+  // The list's skin (a tenth of the largest radius, or more for a wide bond gap), and the
+  // grid search radius of a rebuild.
+  [[nodiscard]] Real skin() const { return skin_; }
+  [[nodiscard]] Real list_reach() const { return std::max(reach(), 2 * max_radius_ + skin()); }
 
   std::vector<Material> materials_host_;
   par::Buffer<Material> materials_;
@@ -162,7 +193,12 @@ private:
   par::Buffer<std::uint8_t> material_, fixed_, tmpb_;
   par::Buffer<Vec3> ext_force_, ext_torque_;
   par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
-  par::Buffer<ContactSlot> hist_old_, hist_new_, tmph_;
+  par::Buffer<ContactSlot> hist_, tmph_, wall_hist_;
+  par::Buffer<std::uint32_t> nbr_, nnbr_, mirror_;
+  par::Buffer<PairForce> pair_;
+  par::Buffer<Vec3> pos_built_; // positions when the list was built
+  bool list_valid_ = false;
+  Real skin_ = 0;
 };
 
 } // namespace surge::dem

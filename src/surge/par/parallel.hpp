@@ -343,6 +343,16 @@ void gather(Buffer<T>& field, Buffer<T>& tmp, const std::uint32_t* perm, int n, 
   field.swap(tmp);
 }
 
+// dst <- src, in the execution space.
+template <class T>
+void copy(Buffer<T>& dst, const Buffer<T>& src) {
+  dst.resize(src.size());
+  T* d = dst.data();
+  const T* s = src.data();
+  parallel_for(
+      static_cast<int>(src.size()), SURGE_LAMBDA(int i) { d[i] = s[i]; });
+}
+
 template <class T>
 void fill(Buffer<T>& b, T value) {
   T* p = b.data();
