@@ -4,8 +4,10 @@
 
 #if defined(SURGE_BACKEND_CUDA)
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_scan.cuh>
 #else
 #include <thrust/execution_policy.h>
+#include <thrust/scan.h>
 #include <thrust/sort.h>
 #endif
 
@@ -59,6 +61,19 @@ void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_
 void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t max_key) {
   radix_sort(keys, values, n, max_key);
 }
+
+std::uint32_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, int n) {
+  if (n <= 0) return 0;
+  std::uint32_t last_in = 0, last_out = 0;
+  par::check_cuda(cudaMemcpy(&last_in, in + n - 1, sizeof last_in, cudaMemcpyDeviceToHost), "scan");
+  static auto* temp = new par::Buffer<unsigned char>; // kept, like the sort's scratch
+  std::size_t bytes = 0;
+  par::check_cuda(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, n), "scan size");
+  if (temp->size() < bytes) temp->resize(bytes);
+  par::check_cuda(cub::DeviceScan::ExclusiveSum(temp->data(), bytes, in, out, n), "scan");
+  par::check_cuda(cudaMemcpy(&last_out, out + n - 1, sizeof last_out, cudaMemcpyDeviceToHost), "scan");
+  return last_out + last_in;
+}
 #else
 namespace {
 template <class K>
@@ -74,6 +89,14 @@ void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_
 }
 void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t /*max_key*/) {
   thrust_sort(keys, values, n);
+}
+
+std::uint32_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, int n) {
+  if (n <= 0) return 0;
+  const par::devcheck::Open access;
+  const std::uint32_t last_in = in[n - 1];
+  thrust::exclusive_scan(thrust::device, in, in + n, out);
+  return out[n - 1] + last_in;
 }
 #endif
 

@@ -14,6 +14,9 @@ void sort_by_key(std::uint32_t* keys, std::uint32_t* values, int n, std::uint32_
 // The same with 64-bit keys: (cell key << 32 | particle id) orders each cell's particles
 // by id, an order that does not depend on how the particles were stored before.
 void sort_by_key(std::uint64_t* keys, std::uint32_t* values, int n, std::uint64_t max_key);
+// out[i] = in[0] + ... + in[i-1]; returns the sum of all n (a copy to the host: a
+// synchronisation on the GPU). out may be in.
+std::uint32_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, int n);
 // values[i] = i
 void iota(std::uint32_t* values, int n);
 

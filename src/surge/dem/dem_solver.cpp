@@ -1,5 +1,7 @@
 #include "surge/dem/dem_solver.hpp"
 
+#include "surge/algo/algo.hpp"
+
 #include "surge/geometry/closest_point.hpp"
 
 #include <algorithm>
@@ -85,9 +87,8 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
 
 // Pair properties from the two materials and radii (a plane passes its sphere's radius
 // as rb: it acts as a sphere of the same radius in the two-spring formula, SPEC §3).
-SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
-  in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
-  in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
+// Everything but the stiffnesses:
+SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
   // damping_ratio falls as e rises: the lower restitution's ratio is the larger one.
   in.beta = ma.damping > mb.damping ? ma.damping : mb.damping;
   in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
@@ -99,6 +100,11 @@ SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real 
   const bool bondable = ma.bonded && mb.bonded;
   in.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
   in.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
+}
+SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
+  in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
+  in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
+  mix_properties(ma, mb, ra, rb, in);
 }
 
 SURGE_HD inline const ContactSlot* find_slot(const ContactSlot* row, std::uint32_t partner) {
@@ -191,78 +197,122 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, i
   in.vb = v.vel[b];
   in.wb = v.omega[b];
   in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-  mix_materials(ma, mb, in.ra, in.rb, in);
+  // The two-spring stiffnesses from each sphere's stored 1/(E r) and 1/(E nu r): the same
+  // bits as normal_stiffness / shear_stiffness, with one division instead of three.
+  in.kn = 1 / (v.compliance[a].x + v.compliance[b].x);
+  in.ks = 1 / (v.compliance[a].y + v.compliance[b].y);
+  mix_properties(ma, mb, in.ra, in.rb, in);
   return pair_terms(in, i_is_a ? mine : negated(mine), dt);
 }
 
-// Lists each sphere's partners: the spheres within r_i + r_j + skin, and those it is
-// bonded to (within the grid's reach). A pair's history lives in its A sphere's row (old
-// rows travelled with their spheres through the sort), found by partner id; both spheres
-// read that same slot to decide, so they list each other or neither. The order is the
-// grid's (cells, then sorted index), the same on any thread count.
-void build_list(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin) {
+// The old pair (A-side history) of spheres a (lower id) and partner id b: searched among
+// a's pairs of the last list, which stay where they were while the spheres are sorted.
+SURGE_HD inline std::uint32_t find_pair(const DemView& v, const ContactSlot* old_hist, int a, std::uint32_t id_b) {
+  const std::uint32_t p0 = v.pair_begin[a], p1 = p0 + v.pair_count[a];
+  for (std::uint32_t p = p0; p < p1; ++p)
+    if (old_hist[p].partner == id_b) return p;
+  return no_partner;
+}
+
+// List pass 1: each sphere's partners, the spheres within r_i + r_j + skin and those
+// bonded to it (within the grid's reach), in the grid's order (cells, then sorted index:
+// the same on any thread count). Both spheres of a pair read the same old pair to decide,
+// so they list each other or neither. entry[k] holds the old pair of an A-side entry
+// (lower id first; no_partner for a new pair); a[i] counts the A-side entries.
+void list_partners(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
+                   std::uint32_t* a_count) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        const ContactSlot* old_row = old_hist + static_cast<std::size_t>(i) * max_contacts;
-        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
         std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
+        std::uint32_t* entry = v.entry + static_cast<std::size_t>(i) * max_contacts;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
+        const std::uint32_t idi = v.id[i];
         int cnt = 0;
-        neighbour::for_each_neighbour(g, xi, search * search, [&](int j, const Vec3& d, Real r2) {
+        std::uint32_t as_a = 0;
+        neighbour::for_each_neighbour(g, xi, search * search, [&](int j, const Vec3&, Real r2) {
           if (j == i || cnt >= max_contacts) return;
           const std::uint32_t idj = v.id[j];
-          const bool i_is_a = v.id[i] < idj;
-          const ContactSlot* s = i_is_a ? find_slot(old_row, idj)
-                                        : find_slot(old_hist + static_cast<std::size_t>(j) * max_contacts, v.id[i]);
-          const bool bonded = s != nullptr && s->bonded != 0;
+          const bool i_is_a = idi < idj;
+          const std::uint32_t old = i_is_a ? find_pair(v, old_hist, i, idj) : find_pair(v, old_hist, j, idi);
+          const bool bonded = old != no_partner && old_hist[old].bonded != 0;
           const Real cut = ri + v.radius[j] + skin;
           if (!(r2 < cut * cut) && !bonded) return;
-          (void)d;
-          ContactSlot slot = s && i_is_a ? *s : ContactSlot{}; // B-side slots hold no history
-          slot.partner = idj;
-          row[cnt] = slot;
           nb[cnt] = static_cast<std::uint32_t>(j);
+          entry[cnt] = i_is_a ? old : no_partner;
+          as_a += i_is_a ? 1U : 0U;
           ++cnt;
         });
         v.nnbr[i] = static_cast<std::uint32_t>(cnt);
-        for (int k = cnt; k < max_contacts; ++k) {
-          row[k] = ContactSlot{};
-          nb[k] = no_partner;
+        a_count[i] = as_a;
+      });
+}
+
+// List pass 2 (pair_begin now the exclusive scan of the A counts): each A-side entry gets
+// the next pair of its sphere, with the old pair's history or a fresh one.
+void fill_pairs(const DemView& v, const ContactSlot* old_hist) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
+        std::uint32_t p = v.pair_begin[i];
+        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
+          const std::uint32_t j = v.nbr[base + k];
+          if (v.id[i] > v.id[j]) continue;
+          const std::uint32_t old = v.entry[base + k];
+          ContactSlot s = old != no_partner ? old_hist[old] : ContactSlot{};
+          s.partner = v.id[j];
+          v.hist[p] = s;
+          v.entry[base + k] = p++;
         }
       });
 }
 
-// Pass 1: each pair once, by its A sphere (lower id), from the A-side history it holds:
-// the history is updated in place and the forces written beside it.
+// List pass 3: each B-side entry takes the pair its partner's entry for it holds
+// (no_partner when the partner's list was full).
+void link_pairs(const DemView& v) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
+        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
+          const std::uint32_t j = v.nbr[base + k];
+          if (v.id[i] < v.id[j]) continue;
+          const std::size_t jb = static_cast<std::size_t>(j) * max_contacts;
+          std::uint32_t at = no_partner;
+          for (std::uint32_t q = 0; q < v.nnbr[j]; ++q)
+            if (v.nbr[jb + q] == static_cast<std::uint32_t>(i)) at = v.entry[jb + q];
+          v.entry[base + k] = at;
+        }
+      });
+}
+
+// Pass 1 of a step: each pair once, by its A sphere (lower id), from the history of its
+// pair: the history is updated in place and the forces written beside it.
 void pair_pass(const DemView& v, const Material* mats, Real dt) {
   par::parallel_for_uneven(
       v.n, SURGE_LAMBDA(int i) {
-        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
-        PairForce* out = v.pair + static_cast<std::size_t>(i) * max_contacts;
-        const std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
-        const int listed = static_cast<int>(v.nnbr[i]);
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         const std::uint32_t idi = v.id[i];
-        for (int k = 0; k < listed; ++k) {
-          const int j = static_cast<int>(nb[k]);
+        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
+          const int j = static_cast<int>(v.nbr[base + k]);
           if (idi > v.id[j]) continue; // the partner is A: it evaluates the pair
+          const std::uint32_t p = v.entry[base + k];
           const Real dist = norm(xi - v.pos[j]);
-          const bool held = row[k].bonded != 0; // a bond acts across a gap too
-          const std::uint32_t partner = row[k].partner;
+          const bool held = v.hist[p].bonded != 0; // a bond acts across a gap too
+          const std::uint32_t partner = v.hist[p].partner;
           if ((!(dist < ri + v.radius[j]) && !held) || dist <= 0) {
-            // Not touching: the contact's history ends (the partner stays listed).
-            row[k] = ContactSlot{};
-            row[k].partner = partner;
-            out[k] = PairForce{};
+            // Not touching: the contact's history ends (the pair stays listed).
+            v.hist[p] = ContactSlot{};
+            v.hist[p].partner = partner;
+            v.pair[p] = PairForce{};
             continue;
           }
           bool i_is_a = true;
-          const PairResult r = sphere_pair(v, mats, i, j, dist, row[k], i_is_a, dt);
-          row[k] = r.slot;
-          row[k].partner = partner;
-          out[k] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
+          const PairResult r = sphere_pair(v, mats, i, j, dist, v.hist[p], i_is_a, dt);
+          v.hist[p] = r.slot;
+          v.hist[p].partner = partner;
+          v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
         }
       });
 }
@@ -285,7 +335,7 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         const std::uint32_t idi = v.id[i];
         for (int k = 0; k < listed; ++k) {
           const bool i_is_a = idi < v.id[nb[k]];
-          const std::uint32_t at = i_is_a ? static_cast<std::uint32_t>(base + k) : v.mirror[base + k];
+          const std::uint32_t at = v.entry[base + k];
           if (at == no_partner) continue; // the partner's list was full
           const PairForce& pf = v.pair[at];
           if (!(pf.flags & 1U)) continue;
@@ -339,24 +389,12 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
       });
 }
 
-// For each B-side entry (the partner has the lower id), the index of the partner's slot
-// that lists this sphere; no_partner when the partner's list was full.
-void link_mirrors(const DemView& v) {
+// c[i] = 1/(E r), 1/(E nu r) of sphere i.
+void compliances(int n, const Material* mats, const std::uint8_t* mat, const Real* radius, Compliance* c) {
   par::parallel_for(
-      v.n, SURGE_LAMBDA(int i) {
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
-        const std::uint32_t idi = v.id[i];
-        for (int k = 0; k < max_contacts; ++k) {
-          std::uint32_t at = no_partner;
-          if (k < static_cast<int>(v.nnbr[i])) {
-            const std::uint32_t j = v.nbr[base + k];
-            const std::size_t jb = static_cast<std::size_t>(j) * max_contacts;
-            for (std::uint32_t q = 0; q < v.nnbr[j]; ++q)
-              if (v.nbr[jb + q] == static_cast<std::uint32_t>(i)) at = static_cast<std::uint32_t>(jb + q);
-          }
-          (void)idi;
-          v.mirror[base + k] = at;
-        }
+      n, SURGE_LAMBDA(int i) {
+        const Material m = mats[mat[i]];
+        c[i] = {1 / (m.young * radius[i]), 1 / (m.young * m.nu * radius[i])};
       });
 }
 
@@ -428,13 +466,12 @@ void bond(const DemView& v, const Material* mats, Real gap) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         if (!mats[v.material[i]].bonded) return;
-        ContactSlot* row = v.hist + static_cast<std::size_t>(i) * max_contacts;
-        const std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
+        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
         for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
-          const int j = static_cast<int>(nb[k]);
+          const int j = static_cast<int>(v.nbr[base + k]);
           if (v.id[i] > v.id[j] || !mats[v.material[j]].bonded) continue;
           if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) continue;
-          row[k].bonded = 1;
+          v.hist[v.entry[base + k]].bonded = 1;
         }
       });
 }
@@ -473,11 +510,11 @@ void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
         Real n1 = q1 + h * (w.x * q0 + w.y * q3 - w.z * q2);
         Real n2 = q2 + h * (-w.x * q3 + w.y * q0 + w.z * q1);
         Real n3 = q3 + h * (w.x * q2 - w.y * q1 + w.z * q0);
-        const Real l = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2 + n3 * n3);
-        q[0] = n0 / l;
-        q[1] = n1 / l;
-        q[2] = n2 / l;
-        q[3] = n3 / l;
+        const Real il = 1 / std::sqrt(n0 * n0 + n1 * n1 + n2 * n2 + n3 * n3);
+        q[0] = n0 * il;
+        q[1] = n1 * il;
+        q[2] = n2 * il;
+        q[3] = n3 * il;
       });
 }
 
@@ -547,19 +584,22 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::fill(broken_, 0U);
   ncontact_.resize(s.size());
   par::fill(ncontact_, 0U);
-  hist_.resize(s.size() * max_contacts);
-  par::fill(hist_, ContactSlot{});
+  hist_.resize(0);
+  n_pairs_ = 0;
+  pair_begin_.resize(s.size());
+  par::fill(pair_begin_, 0U);
+  pair_count_.resize(s.size());
+  par::fill(pair_count_, 0U);
   wall_hist_.resize(s.size() * max_wall_slots);
   par::fill(wall_hist_, ContactSlot{});
   nbr_.resize(s.size() * max_contacts);
   par::fill(nbr_, no_partner);
   nnbr_.resize(s.size());
   par::fill(nnbr_, 0U);
-  mirror_.resize(s.size() * max_contacts);
-  par::fill(mirror_, no_partner);
-  pair_.resize(s.size() * max_contacts);
-  par::fill(pair_, PairForce{});
+  entry_.resize(s.size() * max_contacts);
+  par::fill(entry_, no_partner);
   pos_built_.resize(s.size());
+  derive_compliance();
   list_valid_ = false;
   skin_ = Real(0.1) * max_radius_;
   grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
@@ -578,10 +618,13 @@ DemView DemSolver::view() {
           inertia_.data(),
           material_.data(),
           id_.data(),
-          hist_.data(),
+          compliance_.data(),
           nbr_.data(),
           nnbr_.data(),
-          mirror_.data(),
+          entry_.data(),
+          pair_begin_.data(),
+          pair_count_.data(),
+          hist_.data(),
           pair_.data(),
           wall_hist_.data(),
           broken_.data(),
@@ -604,8 +647,9 @@ Real DemSolver::critical_dt(Real factor) const {
 }
 
 void DemSolver::sort_spheres() {
-  // History rows travel with their sphere (they are keyed by partner id); the list's
-  // partner indices do not survive the sort: rebuild_list makes new ones.
+  // The pairs stay where they are; each sphere takes the range of its pairs along (they
+  // are found again by partner id). The list's indices do not survive the sort:
+  // rebuild_list makes new ones.
   grid_.sort(pos_.data(), nullptr, n_);
   const std::uint32_t* perm = grid_.permutation();
   par::gather(pos_, tmp3_, perm, n_);
@@ -616,25 +660,38 @@ void DemSolver::sort_spheres() {
   par::gather(mass_, tmp1_, perm, n_);
   par::gather(inertia_, tmp1_, perm, n_);
   par::gather(material_, tmpb_, perm, n_);
+  par::gather(compliance_, tmp2_, perm, n_);
   par::gather(fixed_, tmpb_, perm, n_);
   par::gather(id_, tmpu_, perm, n_);
   par::gather(broken_, tmpu_, perm, n_);
-  par::gather(hist_, tmph_, perm, n_, max_contacts);
+  par::gather(pair_begin_, tmpu_, perm, n_);
+  par::gather(pair_count_, tmpu_, perm, n_);
   par::gather(wall_hist_, tmph_, perm, n_, max_wall_slots);
   grid_.build_cell_start(n_);
 }
 
 void DemSolver::rebuild_list() {
   sort_spheres();
-  // The sorted old rows go to the scratch; the new rows, one per listed partner, are
-  // written into hist_.
-  hist_.swap(tmph_);
-  hist_.resize(static_cast<std::size_t>(n_) * max_contacts);
-  const DemView v = view();
-  detail::build_list(v, grid_.view(v.pos), tmph_.data(), list_reach(), skin());
-  detail::link_mirrors(v);
+  // The last list's pairs become the old ones; the new list counts its pairs per A
+  // sphere, numbers them (a scan), carries the histories over and links the B sides.
+  hist_.swap(hist_old_);
+  tmpu_.resize(static_cast<std::size_t>(n_));
+  DemView v = view();
+  detail::list_partners(v, grid_.view(v.pos), hist_old_.data(), list_reach(), skin(), tmpu_.data());
+  par::copy(pair_count_, tmpu_);
+  n_pairs_ = algo::exclusive_scan(pair_count_.data(), pair_begin_.data(), n_);
+  hist_.resize(n_pairs_);
+  pair_.resize(n_pairs_);
+  v = view();
+  detail::fill_pairs(v, hist_old_.data());
+  detail::link_pairs(v);
   par::copy(pos_built_, pos_);
   list_valid_ = true;
+}
+
+void DemSolver::derive_compliance() {
+  compliance_.resize(static_cast<std::size_t>(n_));
+  detail::compliances(n_, materials_.data(), material_.data(), radius_.data(), compliance_.data());
 }
 
 bool DemSolver::list_stale() {
@@ -704,11 +761,12 @@ void DemSolver::for_each_state_buffer(Self& s, F&& f) {
   f(s.torque_, 1);
   f(s.ext_force_, 1);
   f(s.ext_torque_, 1);
-  f(s.hist_, max_contacts);
   f(s.wall_hist_, max_wall_slots);
   f(s.nbr_, max_contacts);
   f(s.nnbr_, 1);
-  f(s.mirror_, max_contacts);
+  f(s.entry_, max_contacts);
+  f(s.pair_begin_, 1);
+  f(s.pair_count_, 1);
   f(s.pos_built_, 1);
 }
 
@@ -720,6 +778,7 @@ std::string DemSolver::save() const {
   const std::uint64_t valid = list_valid_ ? 1 : 0;
   out.append(reinterpret_cast<const char*>(&valid), sizeof valid);
   for_each_state_buffer(*this, [&](const auto& b, int) { save_buffer(out, b); });
+  save_buffer(out, hist_); // the pairs' histories
   return out;
 }
 
@@ -736,7 +795,15 @@ void DemSolver::restore(const std::string& bytes) {
   const auto N = static_cast<std::size_t>(n_);
   for_each_state_buffer(*this,
                         [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
+  // The pairs: as many as the restored A counts say.
+  const auto counts = par::download(pair_count_);
+  std::size_t pairs = 0;
+  for (auto c : counts) pairs += c;
+  load_buffer(bytes, pos, hist_, pairs);
+  n_pairs_ = static_cast<std::uint32_t>(pairs);
+  pair_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
+  derive_compliance(); // from the restored materials and radii, in the restored order
   list_valid_ = valid == 1;
 }
 
@@ -816,14 +883,12 @@ std::vector<Sphere> DemSolver::spheres() const {
 std::vector<Vec3> DemSolver::forces() const { return by_id(par::download(force_), par::download(id_)); }
 std::vector<Vec3> DemSolver::torques() const { return by_id(par::download(torque_), par::download(id_)); }
 std::vector<std::uint32_t> DemSolver::intact_bonds() const {
-  const auto id = par::download(id_);
+  const auto id = par::download(id_), begin = par::download(pair_begin_), count = par::download(pair_count_);
   const auto hist = par::download(hist_);
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < id.size(); ++i)
-    for (int k = 0; k < max_contacts; ++k) {
-      const ContactSlot& s = hist[i * max_contacts + static_cast<std::size_t>(k)];
-      if (s.bonded && s.partner < triangle_partner && id[i] < s.partner) out.insert(out.end(), {id[i], s.partner});
-    }
+    for (std::uint32_t p = begin[i]; p < begin[i] + count[i]; ++p)
+      if (hist[p].bonded) out.insert(out.end(), {id[i], hist[p].partner});
   return out;
 }
 

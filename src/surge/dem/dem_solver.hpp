@@ -80,6 +80,11 @@ struct ContactSlot {
   std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
 };
 
+// A sphere's share of the two-spring stiffnesses: x = 1/(E r), y = 1/(E nu r).
+struct Compliance {
+  Real x = 0, y = 0;
+};
+
 // A listed pair's evaluation by its A sphere: force on A, torques about A's and B's centres.
 struct PairForce {
   Vec3 force_a{}, torque_a{}, torque_b{};
@@ -103,16 +108,18 @@ struct DemView {
   Real *radius, *mass, *inertia;
   std::uint8_t* material;
   std::uint32_t* id;
-  ContactSlot* hist;                  // max_contacts per sphere: the listed pairs' A-side history
-  std::uint32_t* nbr;                 // max_contacts per sphere: the listed partners' indices
-  std::uint32_t* nnbr;                // listed partners per sphere
-  std::uint32_t* mirror;              // max_contacts per sphere: for a B-side entry, the A side's slot index
-  PairForce* pair;                    // max_contacts per sphere: the A side's evaluation of each pair
-  ContactSlot* wall_hist;             // max_wall_slots per sphere: wall contacts, by partner id
-  std::uint32_t* broken;              // bonds this sphere has lost so far (each bond counts on both spheres)
-  std::uint32_t* ncontact;            // contacts of the last step
-  std::uint8_t* fixed;                // 1: not integrated
-  const Vec3 *ext_force, *ext_torque; // by sphere id
+  const Compliance* compliance;
+  std::uint32_t* nbr;                     // max_contacts per sphere: the listed partners' indices
+  std::uint32_t* nnbr;                    // listed partners per sphere
+  std::uint32_t* entry;                   // max_contacts per sphere: the pair of each listed partner
+  std::uint32_t *pair_begin, *pair_count; // the pairs a sphere is A of: [begin, begin + count)
+  ContactSlot* hist;                      // by pair: the A side's history (partner: B's id)
+  PairForce* pair;                        // by pair: the A side's evaluation this step
+  ContactSlot* wall_hist;                 // max_wall_slots per sphere: wall contacts, by partner id
+  std::uint32_t* broken;                  // bonds this sphere has lost so far (each bond counts on both spheres)
+  std::uint32_t* ncontact;                // contacts of the last step
+  std::uint8_t* fixed;                    // 1: not integrated
+  const Vec3 *ext_force, *ext_torque;     // by sphere id
 };
 
 class DemSolver {
@@ -165,6 +172,8 @@ private:
   template <class Self, class F>
   static void for_each_state_buffer(Self& s, F&& f);
   void sort_spheres();
+  // compliance_ from each sphere's material and radius.
+  void derive_compliance();
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
   void rebuild_list();
   // Whether some sphere has moved more than half the skin since the list was built.
@@ -193,10 +202,12 @@ private:
   par::Buffer<std::uint8_t> material_, fixed_, tmpb_;
   par::Buffer<Vec3> ext_force_, ext_torque_;
   par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
-  par::Buffer<ContactSlot> hist_, tmph_, wall_hist_;
-  par::Buffer<std::uint32_t> nbr_, nnbr_, mirror_;
+  par::Buffer<ContactSlot> hist_, hist_old_, wall_hist_, tmph_; // pairs; the last list's; walls; gather scratch
+  par::Buffer<std::uint32_t> nbr_, nnbr_, entry_, pair_begin_, pair_count_;
   par::Buffer<PairForce> pair_;
+  std::uint32_t n_pairs_ = 0;
   par::Buffer<Vec3> pos_built_; // positions when the list was built
+  par::Buffer<Compliance> compliance_, tmp2_;
   bool list_valid_ = false;
   Real skin_ = 0;
 };
