@@ -5,12 +5,15 @@
 # beside them; and the DEM side by side with LAMMPS (Debian's lammps package, installed
 # if missing) on the same lattice case, with their ratio from the same run, so that a
 # noisy machine cannot fake a gain. Results: benchmarks/results.jsonl
+# usage: benchmarks/run_benchmarks.sh [dem]   (dem: only the DEM against LAMMPS)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -x build/cpu/benchmarks/bench_sph ] && [ -x build/cpu/benchmarks/bench_stream ] ||
   { cmake --preset cpu && cmake --build --preset cpu -j"$(nproc)"; }
 out=benchmarks/results.jsonl
-: > "$out"
+only=${1:-all} # "dem": only the DEM against LAMMPS (appended to the results)
+[ "$only" = dem ] || : > "$out"
+if [ "$only" != dem ]; then
 # Memory bandwidth, 1 and 2 threads: SPH throughput compares across machines per GB/s.
 for threads in 1 2; do build/cpu/benchmarks/bench_stream $threads | tee -a "$out"; done
 for threads in 1 2; do
@@ -28,6 +31,7 @@ for threads in 1 2; do
   # Neighbour search alone, 1e6 particles.
   build/cpu/benchmarks/bench_neighbour 1000000 $threads | tee -a "$out"
 done
+fi
 
 # DEM against LAMMPS, one thread each, the same lattice case (bench_dem's sizes:
 # nx = 2 floor(cbrt(N/2)), ny = nx/2, nz = N / (nx ny)), measured back to back.
