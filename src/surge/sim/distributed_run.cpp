@@ -29,15 +29,23 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
 bool DistributedRun::root() { return domain::comm::rank() == 0; }
 int DistributedRun::ranks() { return domain::comm::size(); }
 
-void DistributedRun::start(particles::HostParticles all) {
-  if (!active()) return;
+bool DistributedRun::enabled() { return domain::comm::built_with_mpi(); }
+
+void DistributedRun::start(particles::HostParticles all, long steps) {
+  if (!active()) {
+    if (steps >= 0) solver_.restore(all, steps);
+    return;
+  }
   if (all.vel_prev.size() != all.size()) all.vel_prev = all.vel;
   if (all.rho_prev.size() != all.size()) all.rho_prev = all.rho;
   all.halo.clear();
   slabs_->balance(all);
   const auto s = slabs_->distribute(all);
   traffic_.halo_now = static_cast<long>(s.halo);
-  solver_.replace(all);
+  if (steps >= 0)
+    solver_.restore(all, steps);
+  else
+    solver_.replace(all);
   stale_ = false;
 }
 

@@ -20,13 +20,16 @@ public:
   DistributedRun& operator=(const DistributedRun&) = delete;
 
   [[nodiscard]] bool active() const { return slabs_.has_value(); }
+  // Whether runs are distributed (built with MPI): the solver then starts empty.
+  [[nodiscard]] static bool enabled();
   [[nodiscard]] static bool root();
   [[nodiscard]] static int ranks();
   [[nodiscard]] const Distribution& distribution() const { return dist_; }
 
   // Every process holds `all` alike (the initial state or a checkpoint's particles):
   // faces are placed for an even load and each keeps its slab and halo.
-  void start(particles::HostParticles all);
+  // With `steps` (a checkpoint), the solver continues at that step count.
+  void start(particles::HostParticles all, long steps = -1);
   // A step moved the particles: the halo copies no longer hold what the owners hold.
   void stepped() { stale_ = true; }
   // Before a step, a gauge sample or an output: halo exchange (and every 50 steps a

@@ -189,7 +189,9 @@ int run(const Case& c, const RunOptions& opt) {
   sph::InitialState init = sph::build_initial_state(c);
   std::optional<CoupledParts> cp;
   if (c.coupled()) cp.emplace(c, init);
-  sph::WcsphSolver solver(c, init);
+  // A distributed run's solver starts empty: each process uploads only its slab (below).
+  const particles::HostParticles none;
+  sph::WcsphSolver solver(c, init, DistributedRun::enabled() ? &none : nullptr);
   sph::Gauges gauges(c, init);
   const ExtraCounts extra{cp ? cp->coupling->n_body() : 0, cp ? cp->setup.spheres.size() : 0};
   // Built with MPI: slabs of particles, one per process; only rank 0 writes files and prints.
@@ -356,8 +358,7 @@ int run(const Case& c, const RunOptions& opt) {
       for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
       spheres_pvd->restore(entries);
     }
-    solver.restore(ck.particles, ck.steps);
-    dist.start(std::move(ck.particles)); // a checkpoint of any number of processes
+    dist.start(std::move(ck.particles), ck.steps); // a checkpoint of any number of processes
     // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
     // placed again are the checkpoint's, bit for bit).
     if (cp) cp->coupling->place_bodies(solver, *cp->dem);

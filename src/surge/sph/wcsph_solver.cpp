@@ -233,7 +233,7 @@ std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
 }
 } // namespace detail
 
-WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
+WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particles::HostParticles* held) : case_(c) {
   const double h = c.h();
   prm_.kernel = WendlandC2(static_cast<Real>(h));
   prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
@@ -253,7 +253,7 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init) : case_(c) {
       hi[k] = std::fmax(hi[k], p[k]);
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
-  store_.upload(init.particles);
+  store_.upload(held ? *held : init.particles);
   ghosts_.on = c.sph.boundary == "mdbc";
   if (ghosts_.on) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
   ghosts_.first_id = init.first_boundary_id;

@@ -47,7 +47,9 @@ struct StepStats {
 
 class WcsphSolver {
 public:
-  WcsphSolver(const Case& c, const InitialState& init);
+  // Holds init.particles, or `held` instead (a distributed run starts empty and receives its
+  // slab; the grid still covers every particle of init).
+  WcsphSolver(const Case& c, const InitialState& init, const particles::HostParticles* held = nullptr);
 
   // Sorts, computes rates, chooses dt (clipped to dt_max), integrates, flags removals.
   StepStats step(double dt_max);
