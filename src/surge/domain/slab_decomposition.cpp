@@ -1,5 +1,6 @@
 #include "surge/domain/slab_decomposition.hpp"
 
+#include "surge/algo/algo.hpp"
 #include "surge/domain/comm.hpp"
 
 #include <algorithm>
@@ -94,13 +95,9 @@ SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reac
   cuts_.back() = std::numeric_limits<double>::infinity();
 }
 
-int SlabDecomposition::owner(Real x) const {
-  if (!std::isfinite(x)) return comm::rank(); // diverged: kept where it is, for the step's checks to see
-  const auto xd = static_cast<double>(x);
-  // The number of inner faces at or below x.
-  const auto it = std::upper_bound(cuts_.begin() + 1, cuts_.end() - 1, xd);
-  return static_cast<int>(it - (cuts_.begin() + 1));
-}
+SlabView SlabDecomposition::host_view() const { return {cuts_.data(), comm::size(), comm::rank(), reach_}; }
+
+int SlabDecomposition::owner(Real x) const { return host_view().owner(x); }
 
 bool SlabDecomposition::owns(const Vec3& p) const { return owner(p[axis_]) == comm::rank(); }
 
@@ -188,11 +185,6 @@ ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const
   return s;
 }
 
-bool SlabDecomposition::near_other_slab(double x) const {
-  const int me = comm::rank();
-  return (me > 0 && x < cuts_[me] + reach_) || (me + 1 < comm::size() && x >= cuts_[me + 1] - reach_);
-}
-
 void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const {
   const int me = comm::rank(), p = comm::size();
   for (std::size_t i = 0; i < h.size(); ++i) {
@@ -202,39 +194,83 @@ void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vec
   }
 }
 
-ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const Balance* balance) {
-  const int me = comm::rank(), p = comm::size();
-  std::vector<Real> x;
-  std::vector<std::uint8_t> state;
-  store.coordinates(axis_, x, state);
-  ExchangeStats s;
-  s.rebalanced = balance && rebalance(x, state, *balance);
-  // Halo copies go (fresh ones come); leavers go to their owner; owned particles near a
-  // face are copied to the slabs within reach. Removed ones stay for the sort to drop.
-  std::vector<std::uint32_t> drop, leave, near;
-  std::vector<int> leave_to;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (state[i] == 2) continue;
-    const auto k = static_cast<std::uint32_t>(i);
-    if (state[i] == 1) {
-      drop.push_back(k);
-      continue;
-    }
-    const int o = owner(x[i]);
-    if (o != me) {
-      drop.push_back(k);
-      leave.push_back(k);
-      leave_to.push_back(o);
-    } else if (near_other_slab(static_cast<double>(x[i]))) {
-      near.push_back(k);
-    }
+namespace detail {
+// What each particle does in an exchange: 0 nothing (owned, away from faces, or marked
+// Removed), 1 halo copy to drop, 2 leaves for another slab, 3 owned and near a face (copied).
+// flag[i] = (code != 0), for the compaction's scan. Free functions: nvcc's extended lambdas.
+void classify(const particles::ParticleView& p, int axis, SlabView s, std::uint8_t* code, std::uint32_t* flag) {
+  const auto removed = static_cast<std::uint8_t>(Kind::Removed);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        std::uint8_t c = 0;
+        if (p.kind[i] != removed) {
+          const Real x = p.pos[i][axis];
+          if (!p.owned(i))
+            c = 1;
+          else if (s.owner(x) != s.me)
+            c = 2;
+          else if (s.near_other(x))
+            c = 3;
+        }
+        code[i] = c;
+        flag[i] = c != 0 ? 1U : 0U;
+      });
+}
+// The selected particles, in index order: at[i] is i's place among them (an exclusive scan).
+void compact(int n, const std::uint8_t* code, const std::uint32_t* at, std::uint32_t* index, std::uint8_t* what) {
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) {
+        if (code[i] == 0) return;
+        index[at[i]] = static_cast<std::uint32_t>(i);
+        what[at[i]] = code[i];
+      });
+}
+} // namespace detail
+
+void SlabDecomposition::select(particles::ParticleStore& store, std::vector<std::uint32_t>& drop,
+                               std::vector<std::uint32_t>& leave, std::vector<std::uint32_t>& near) {
+  const int n = store.size();
+  par::upload(cuts_dev_, cuts_);
+  SlabView sv = host_view();
+  sv.cuts = cuts_dev_.data();
+  const auto scratch = store.exchange_scratch();
+  detail::classify(store.view(), axis_, sv, scratch.byte, scratch.word);
+  const std::uint32_t m = algo::exclusive_scan(scratch.word, scratch.word, n);
+  sel_index_.resize(m);
+  sel_code_.resize(m);
+  detail::compact(n, scratch.byte, scratch.word, sel_index_.data(), sel_code_.data());
+  std::vector<std::uint32_t> index;
+  std::vector<std::uint8_t> code;
+  par::download(index, sel_index_, m);
+  par::download(code, sel_code_, m);
+  for (std::uint32_t k = 0; k < m; ++k) {
+    if (code[k] == 1 || code[k] == 2) drop.push_back(index[k]);
+    if (code[k] == 2) leave.push_back(index[k]);
+    if (code[k] == 3) near.push_back(index[k]);
   }
+}
+
+ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const Balance* balance) {
+  const int p = comm::size();
+  ExchangeStats s;
+  if (balance) {
+    // Rebalancing needs every particle's coordinate (a histogram); only then are they all
+    // copied to the host.
+    std::vector<Real> x;
+    std::vector<std::uint8_t> state;
+    store.coordinates(axis_, x, state);
+    s.rebalanced = rebalance(x, state, *balance);
+  }
+  // On the device: which particles leave, are halo copies to drop, or are near a face;
+  // only those indices come to the host (a few per cent of the particles).
+  std::vector<std::uint32_t> drop, leave, near;
+  select(store, drop, leave, near);
   particles::HostParticles leaving, staying;
   store.extract(leave, leaving);
   store.extract(near, staying);
   s.migrated = leave.size();
   std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
-  for (std::size_t i = 0; i < leaving.size(); ++i) append(out[leave_to[i]], leaving, i);
+  for (std::size_t i = 0; i < leaving.size(); ++i) append(out[owner(leaving.pos[i][axis_])], leaving, i);
   for (const auto& o : out) s.bytes_sent += o.size();
   particles::HostParticles arrived, halo;
   for (const auto& in : comm::all_to_all(out)) unpack(in, arrived, 0);
@@ -248,7 +284,8 @@ ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const
   }
   for (const auto& in : comm::all_to_all(out)) unpack(in, halo, 1);
   s.halo = halo.size();
-  s.owned = x.size() - drop.size() + arrived.size(); // removed ones included until the sort
+  s.owned =
+      static_cast<std::size_t>(store.size()) - drop.size() + arrived.size(); // removed ones included until the sort
   for (std::size_t i = 0; i < halo.size(); ++i) push(arrived, halo, i, 1);
   store.remove(drop);
   store.append(arrived);

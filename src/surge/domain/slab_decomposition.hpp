@@ -6,10 +6,36 @@
 #include "surge/core/distribution.hpp"
 #include "surge/particles/particle_store.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace surge::domain {
+
+// The slab faces as a kernel sees them (cuts in the execution space): who owns x, and
+// whether x is within reach of another process's slab. One definition for host and device.
+struct SlabView {
+  const double* cuts = nullptr; // ranks + 1 entries; cuts[0] = -inf, cuts[ranks] = +inf
+  int ranks = 1, me = 0;
+  double reach = 0;
+  [[nodiscard]] SURGE_HD int owner(Real x) const {
+    if (!std::isfinite(x)) return me; // diverged: kept where it is, for the step's checks to see
+    const auto xd = static_cast<double>(x);
+    int lo = 0, hi = ranks - 1; // the number of inner faces at or below x
+    while (lo < hi) {
+      const int mid = (lo + hi + 1) / 2;
+      if (cuts[mid] <= xd)
+        lo = mid;
+      else
+        hi = mid - 1;
+    }
+    return lo;
+  }
+  [[nodiscard]] SURGE_HD bool near_other(Real x) const {
+    const auto xd = static_cast<double>(x);
+    return (me > 0 && xd < cuts[me] + reach) || (me + 1 < ranks && xd >= cuts[me + 1] - reach);
+  }
+};
 
 struct ExchangeStats {
   std::size_t migrated = 0;   // particles this process handed to another owner
@@ -66,7 +92,14 @@ private:
   void cuts_from(const std::vector<double>& hist);
   // Appends to `out[r]` the records of the particles of `h` within reach of slab r != this one.
   void halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const;
-  [[nodiscard]] bool near_other_slab(double x) const;
+  [[nodiscard]] SlabView host_view() const;
+  // The exchange's selection, made on the device: indices of halo copies and leavers to
+  // drop, of leavers, and of owned particles near a face.
+  void select(particles::ParticleStore& store, std::vector<std::uint32_t>& drop, std::vector<std::uint32_t>& leave,
+              std::vector<std::uint32_t>& near);
+  par::Buffer<double> cuts_dev_;         // cuts_ in the execution space
+  par::Buffer<std::uint32_t> sel_index_; // the exchange's selection: particle indices
+  par::Buffer<std::uint8_t> sel_code_;   // ... and what each one does
   int axis_;
   double lo_, hi_, reach_, bin_;
   std::vector<double> cuts_;

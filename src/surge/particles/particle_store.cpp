@@ -163,6 +163,12 @@ void ParticleStore::coordinates(int axis, std::vector<Real>& x, std::vector<std:
   par::download(state, cls_, n);
 }
 
+ParticleStore::Scratch ParticleStore::exchange_scratch() {
+  cls_.resize(static_cast<std::size_t>(n_));
+  tmpu_.resize(static_cast<std::size_t>(n_));
+  return {cls_.data(), tmpu_.data()};
+}
+
 void ParticleStore::extract(const std::vector<std::uint32_t>& idx, HostParticles& out) {
   const int n = static_cast<int>(idx.size());
   par::upload(idx_, idx);

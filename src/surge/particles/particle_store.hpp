@@ -74,6 +74,13 @@ public:
   // them); particles appended at the end.
   void coordinates(int axis, std::vector<Real>& x, std::vector<std::uint8_t>& state);
   void extract(const std::vector<std::uint32_t>& idx, HostParticles& out);
+  // Two per-particle scratch arrays for an exchange's selection (the sort's own scratch,
+  // free between sorts): a byte and a 32-bit word per particle.
+  struct Scratch {
+    std::uint8_t* byte;
+    std::uint32_t* word;
+  };
+  Scratch exchange_scratch();
   void remove(const std::vector<std::uint32_t>& idx);
   void append(const HostParticles& h);
   // Allocates pos_prev (scratch of the symplectic scheme; null in views until then).
