@@ -341,3 +341,23 @@ TEST(DemSolver, WallGaugeReadsTheWeightOfARestingColumn) {
     EXPECT_EQ(none.force.z, 0.0f);
   }
 }
+
+namespace {
+// A sphere of radius 0.1 m with 26 spheres of 0.01 m touching it all round: more partners
+// than a sphere can list.
+TEST(DemSolver, MoreNeighboursThanAListHoldsIsAnErrorNotAMissedContact) {
+  DemSolver s({grains(0.5f)}, {}, Vec3{}, Vec3{-1, -1, -1}, Vec3{1, 1, 1});
+  std::vector<Sphere> sp{{{0, 0, 0}, {}, {}, 0.1f, 0}};
+  const int n = 26;
+  for (int k = 0; k < n; ++k) { // a Fibonacci lattice on the sphere of radius 0.109
+    const double z = 1 - (2 * k + 1.0) / n, rho = std::sqrt(1 - z * z), phi = 2.399963229728653 * k;
+    sp.push_back({Vec3(Vec3d{rho * std::cos(phi), rho * std::sin(phi), z} * 0.109), {}, {}, 0.01f, 0});
+  }
+  s.set_spheres(sp);
+  EXPECT_THROW(s.step(1e-6f), std::runtime_error);
+  // With 12 around it (fewer than the 16 a list holds) the step goes ahead.
+  sp.resize(13);
+  s.set_spheres(sp);
+  EXPECT_NO_THROW(s.step(1e-6f));
+}
+} // namespace

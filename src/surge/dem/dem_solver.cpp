@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace surge::dem {
 namespace detail {
@@ -218,26 +219,29 @@ SURGE_HD inline std::uint32_t find_pair(const DemView& v, const ContactSlot* old
 // bonded to it (within the grid's reach), in the grid's order (cells, then sorted index:
 // the same on any thread count). Both spheres of a pair read the same old pair to decide,
 // so they list each other or neither. entry[k] holds the old pair of an A-side entry
-// (lower id first; no_partner for a new pair); a[i] counts the A-side entries.
-void list_partners(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
-                   std::uint32_t* a_count) {
-  par::parallel_for(
-      v.n, SURGE_LAMBDA(int i) {
+// (lower id first; no_partner for a new pair); a[i] counts the A-side entries. Returns the
+// most partners any sphere wanted (more than max_contacts: some were left out).
+int list_partners(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
+                  std::uint32_t* a_count) {
+  return par::parallel_reduce(
+      v.n, 0,
+      SURGE_LAMBDA(int i) {
         std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
         std::uint32_t* entry = v.entry + static_cast<std::size_t>(i) * max_contacts;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         const std::uint32_t idi = v.id[i];
-        int cnt = 0;
+        int cnt = 0, wanted = 0;
         std::uint32_t as_a = 0;
         neighbour::for_each_neighbour(g, xi, search * search, [&](int j, const Vec3&, Real r2) {
-          if (j == i || cnt >= max_contacts) return;
+          if (j == i) return;
           const std::uint32_t idj = v.id[j];
           const bool i_is_a = idi < idj;
           const std::uint32_t old = i_is_a ? find_pair(v, old_hist, i, idj) : find_pair(v, old_hist, j, idi);
           const bool bonded = old != no_partner && old_hist[old].bonded != 0;
           const Real cut = ri + v.radius[j] + skin;
           if (!(r2 < cut * cut) && !bonded) return;
+          if (++wanted > max_contacts) return;
           nb[cnt] = static_cast<std::uint32_t>(j);
           entry[cnt] = i_is_a ? old : no_partner;
           as_a += i_is_a ? 1U : 0U;
@@ -245,7 +249,9 @@ void list_partners(const DemView& v, const neighbour::GridView& g, const Contact
         });
         v.nnbr[i] = static_cast<std::uint32_t>(cnt);
         a_count[i] = as_a;
-      });
+        return wanted;
+      },
+      par::Max{});
 }
 
 // List pass 2 (pair_begin now the exclusive scan of the A counts): each A-side entry gets
@@ -677,7 +683,12 @@ void DemSolver::rebuild_list() {
   hist_.swap(hist_old_);
   tmpu_.resize(static_cast<std::size_t>(n_));
   DemView v = view();
-  detail::list_partners(v, grid_.view(v.pos), hist_old_.data(), list_reach(), skin(), tmpu_.data());
+  const int wanted = detail::list_partners(v, grid_.view(v.pos), hist_old_.data(), list_reach(), skin(), tmpu_.data());
+  if (wanted > max_contacts)
+    throw std::runtime_error("DEM: a sphere has " + std::to_string(wanted) +
+                             " neighbours within r_i + r_j + skin, more than the " + std::to_string(max_contacts) +
+                             " a sphere can list (spheres much larger than their neighbours, or overlapping); contacts "
+                             "would be missed");
   par::copy(pair_count_, tmpu_);
   n_pairs_ = algo::exclusive_scan(pair_count_.data(), pair_begin_.data(), n_);
   hist_.resize(n_pairs_);
