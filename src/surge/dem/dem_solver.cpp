@@ -30,7 +30,7 @@ struct PairInput {
   Real un;     // overlap
   Real ra, rb; // radii (rb: 0 for a plane)
   Vec3 va, wa, vb, wb;
-  Real mstar, kn, ks, beta; // reduced mass, stiffnesses, damping ratio of the lower restitution
+  Real kn, ks, cn; // stiffnesses and normal damping coefficient (pair_law)
   Real tan_phi;
   Real k_roll, k_roll_max, k_twist, k_twist_max;
   Real rmin;             // r' = min(r_A, r_B)
@@ -43,7 +43,9 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
   const Vec3 cb = n * (in.rb - in.un / 2);    // ... relative to B's centre
   const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
   const Real dun = -dot(vrel, n);
-  const NormalSpringDashpot law = NormalSpringDashpot::with_ratio(in.kn, in.mstar, in.beta);
+  NormalSpringDashpot law;
+  law.kn = in.kn;
+  law.cn = in.cn;
   bool bonded = old.bonded != 0, broke = false;
   Real fn = law.force(in.un, dun, bonded);
   const Real area = in.rmin * in.rmin;
@@ -90,8 +92,7 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
 // as rb: it acts as a sphere of the same radius in the two-spring formula, SPEC §3).
 // Everything but the stiffnesses:
 SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
-  // damping_ratio falls as e rises: the lower restitution's ratio is the larger one.
-  in.beta = ma.damping > mb.damping ? ma.damping : mb.damping;
+
   in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
   in.k_roll = (ma.k_roll + mb.k_roll) / 2;
   in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
@@ -102,9 +103,16 @@ SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real
   in.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
   in.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
 }
-SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
+// The normal law's damping: c_n = 2 beta sqrt(m* k_n), beta that of the lower restitution
+// (damping_ratio falls as e rises, so it is the larger of the two materials' ratios).
+SURGE_HD inline Real normal_damping(const Material& ma, const Material& mb, Real kn, Real mstar) {
+  return NormalSpringDashpot::with_ratio(kn, mstar, ma.damping > mb.damping ? ma.damping : mb.damping).cn;
+}
+SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, Real mstar,
+                                   PairInput& in) {
   in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
   in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
+  in.cn = normal_damping(ma, mb, in.kn, mstar);
   mix_properties(ma, mb, ra, rb, in);
 }
 
@@ -173,19 +181,16 @@ SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Materia
   in.wa = v.omega[i];
   in.vb = Vec3{};
   in.wb = Vec3{};
-  in.mstar = v.mass[i];
   Material unbondable = mw;
   unbondable.bonded = false;
-  mix_materials(mi, unbondable, in.ra, in.ra, in);
+  mix_materials(mi, unbondable, in.ra, in.ra, v.mass[i], in);
   return in;
 }
 
-// The pair terms of sphere i with its partner j (sorted indices), from the slot i holds
-// for the pair (its own side's copy of the history); returns the slot for i's side.
-SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, int i, int j, Real dist,
-                                       const ContactSlot& mine, bool& i_is_a, Real dt) {
-  i_is_a = v.id[i] < v.id[j];
-  const int a = i_is_a ? i : j, b = i_is_a ? j : i;
+// The pair terms of sphere a (the lower id) with b (sorted indices) for pair p: the
+// history of the pair and its stored law, the rest from the two spheres and materials.
+SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, int a, int b, std::uint32_t p, Real dist,
+                                       Real dt) {
   const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
   PairInput in;
   const Vec3 dab = v.pos[a] - v.pos[b];
@@ -197,13 +202,32 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, i
   in.wa = v.omega[a];
   in.vb = v.vel[b];
   in.wb = v.omega[b];
-  in.mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-  // The two-spring stiffnesses from each sphere's stored 1/(E r) and 1/(E nu r): the same
-  // bits as normal_stiffness / shear_stiffness, with one division instead of three.
-  in.kn = 1 / (v.compliance[a].x + v.compliance[b].x);
-  in.ks = 1 / (v.compliance[a].y + v.compliance[b].y);
+  const PairLaw law = v.law[p];
+  in.kn = law.kn;
+  in.ks = law.ks;
+  in.cn = law.cn;
   mix_properties(ma, mb, in.ra, in.rb, in);
-  return pair_terms(in, i_is_a ? mine : negated(mine), dt);
+  return pair_terms(in, v.hist[p], dt);
+}
+
+// Each pair's stiffnesses and damping, once per list: the two-spring stiffnesses from each
+// sphere's 1/(E r) and 1/(E nu r) (the same bits as normal_stiffness / shear_stiffness)
+// and c_n from the reduced mass. Written by the pair's A sphere.
+void pair_laws(const DemView& v, const Material* mats) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int a) {
+        const std::size_t base = static_cast<std::size_t>(a) * max_contacts;
+        for (std::uint32_t k = 0; k < v.nnbr[a]; ++k) {
+          const int b = static_cast<int>(v.nbr[base + k]);
+          if (v.id[a] > v.id[b]) continue;
+          PairLaw law;
+          law.kn = 1 / (v.compliance[a].x + v.compliance[b].x);
+          law.ks = 1 / (v.compliance[a].y + v.compliance[b].y);
+          const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
+          law.cn = normal_damping(mats[v.material[a]], mats[v.material[b]], law.kn, mstar);
+          v.law[v.entry[base + k]] = law;
+        }
+      });
 }
 
 // The old pair (A-side history) of spheres a (lower id) and partner id b: searched among
@@ -314,8 +338,7 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
             v.pair[p] = PairForce{};
             continue;
           }
-          bool i_is_a = true;
-          const PairResult r = sphere_pair(v, mats, i, j, dist, v.hist[p], i_is_a, dt);
+          const PairResult r = sphere_pair(v, mats, i, j, p, dist, dt);
           v.hist[p] = r.slot;
           v.hist[p].partner = partner;
           v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
@@ -632,6 +655,7 @@ DemView DemSolver::view() {
           pair_count_.data(),
           hist_.data(),
           pair_.data(),
+          law_.data(),
           wall_hist_.data(),
           broken_.data(),
           ncontact_.data(),
@@ -694,8 +718,11 @@ void DemSolver::rebuild_list() {
   hist_.resize(n_pairs_);
   pair_.resize(n_pairs_);
   v = view();
+  law_.resize(n_pairs_);
+  v = view();
   detail::fill_pairs(v, hist_old_.data());
   detail::link_pairs(v);
+  detail::pair_laws(v, materials_.data());
   par::copy(pos_built_, pos_);
   list_valid_ = true;
 }
@@ -813,8 +840,10 @@ void DemSolver::restore(const std::string& bytes) {
   load_buffer(bytes, pos, hist_, pairs);
   n_pairs_ = static_cast<std::uint32_t>(pairs);
   pair_.resize(pairs);
+  law_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
   derive_compliance(); // from the restored materials and radii, in the restored order
+  detail::pair_laws(view(), materials_.data());
   list_valid_ = valid == 1;
 }
 

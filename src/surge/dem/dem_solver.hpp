@@ -85,6 +85,11 @@ struct Compliance {
   Real x = 0, y = 0;
 };
 
+// A pair's normal and shear stiffness and normal damping, fixed while it is listed.
+struct PairLaw {
+  Real kn = 0, ks = 0, cn = 0;
+};
+
 // A listed pair's evaluation by its A sphere: force on A, torques about A's and B's centres.
 struct PairForce {
   Vec3 force_a{}, torque_a{}, torque_b{};
@@ -115,6 +120,7 @@ struct DemView {
   std::uint32_t *pair_begin, *pair_count; // the pairs a sphere is A of: [begin, begin + count)
   ContactSlot* hist;                      // by pair: the A side's history (partner: B's id)
   PairForce* pair;                        // by pair: the A side's evaluation this step
+  PairLaw* law;                           // by pair: stiffnesses and damping
   ContactSlot* wall_hist;                 // max_wall_slots per sphere: wall contacts, by partner id
   std::uint32_t* broken;                  // bonds this sphere has lost so far (each bond counts on both spheres)
   std::uint32_t* ncontact;                // contacts of the last step
@@ -205,6 +211,7 @@ private:
   par::Buffer<ContactSlot> hist_, hist_old_, wall_hist_, tmph_; // pairs; the last list's; walls; gather scratch
   par::Buffer<std::uint32_t> nbr_, nnbr_, entry_, pair_begin_, pair_count_;
   par::Buffer<PairForce> pair_;
+  par::Buffer<PairLaw> law_;
   std::uint32_t n_pairs_ = 0;
   par::Buffer<Vec3> pos_built_; // positions when the list was built
   par::Buffer<Compliance> compliance_, tmp2_;
