@@ -63,19 +63,10 @@ void abort(int code) {
   MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);
 }
-void barrier() { check(MPI_Barrier(MPI_COMM_WORLD), "barrier"); }
 void sum(double* x, std::size_t n) { allreduce(x, n, MPI_DOUBLE, MPI_SUM); }
 void sum(Real* x, std::size_t n) { allreduce(x, n, real_type(), MPI_SUM); }
 void min(double* x, std::size_t n) { allreduce(x, n, MPI_DOUBLE, MPI_MIN); }
 void max(double* x, std::size_t n) { allreduce(x, n, MPI_DOUBLE, MPI_MAX); }
-
-void broadcast(std::vector<char>& bytes) {
-  if (size() == 1) return;
-  long n = static_cast<long>(bytes.size());
-  check(MPI_Bcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD), "broadcast");
-  bytes.resize(static_cast<std::size_t>(n));
-  check(MPI_Bcast(bytes.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD), "broadcast");
-}
 
 std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) {
   const CollectiveTimer timer;
@@ -124,12 +115,10 @@ bool built_with_mpi() { return false; }
 int rank() { return 0; }
 int size() { return 1; }
 void abort(int code) { std::exit(code); }
-void barrier() {}
 void sum(double*, std::size_t) {}
 void sum(Real*, std::size_t) {}
 void min(double*, std::size_t) {}
 void max(double*, std::size_t) {}
-void broadcast(std::vector<char>&) {}
 std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) { return send; }
 std::vector<char> gather(const std::vector<char>& mine) { return mine; }
 #endif

@@ -17,7 +17,6 @@ void finalize();
 [[nodiscard]] int size();
 // Ends every process of the run at once (an error that not every process saw).
 [[noreturn]] void abort(int code);
-void barrier();
 
 // Element-wise over processes, in place; every process gets the result.
 void sum(double* x, std::size_t n);
@@ -30,8 +29,6 @@ void max(double* x, std::size_t n);
 // Seconds this process has spent inside collective calls (waiting for the others
 // included): the load imbalance shows as the difference between processes.
 [[nodiscard]] double collective_seconds();
-// Rank 0's bytes to every process.
-void broadcast(std::vector<char>& bytes);
 // send[r]: bytes for process r; returns what each process sent this one, by sender.
 [[nodiscard]] std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send);
 // Every process's bytes, concatenated in rank order, on rank 0 (empty elsewhere).
