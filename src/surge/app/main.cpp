@@ -49,12 +49,15 @@ int fail_usage(const std::string& msg) {
 int surge_main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) return fail_usage("no command given");
+  const bool root = surge::domain::comm::rank() == 0; // under mpirun, one process speaks
   if (args[0] == "--help" || args[0] == "-h") {
-    std::fputs(usage, stdout);
+    if (root) std::fputs(usage, stdout);
     return 0;
   }
   if (args[0] == "--version") {
-    std::printf("surge %s (%s backend)\n", surge::version_string, surge::par::backend_name());
+    if (root)
+      std::printf("surge %s (%s backend%s)\n", surge::version_string, surge::par::backend_name(),
+                  surge::domain::comm::built_with_mpi() ? ", MPI" : "");
     return 0;
   }
   const std::string cmd = args[0];
@@ -103,7 +106,6 @@ int surge_main(int argc, char** argv) {
   }
   try {
     const surge::Case c = surge::io::read_case(case_path, sets);
-    const bool root = surge::domain::comm::rank() == 0;
     if (cmd == "check") return root ? surge::sim::check(c) : 0;
     surge::par::set_threads(threads);
     std::signal(SIGINT, on_signal);
