@@ -110,6 +110,27 @@ arch = runs_on([1, 3], "archimedes", os.path.join(CASES, "archimedes.yaml"),
                 "--set", "sph.integrator=symplectic"])
 same_files(arch[1], arch[3], "Archimedes with mdbc and symplectic, 1 and 3 processes")
 
+# --- coupling.force_sum: per_sphere (per-process sphere sums added in rank order): equal to
+# one process to round-off (relative 1e-5), not necessarily bitwise; the fixed sphere leaves
+# the water's bits alone
+ps = runs_on([1, 3], "archimedes_per_sphere", os.path.join(CASES, "archimedes.yaml"),
+             ["--set", "time.end=0.02", "--set", "time.output_every=0.01", "--set", "coupling.force_sum=per_sphere"])
+
+
+def gauge_rows(out):
+    with open(os.path.join(out, "gauges.csv")) as f:
+        next(f)
+        return [[float(x) for x in line.split(",")] for line in f]
+
+
+g1, g3 = gauge_rows(ps[1]), gauge_rows(ps[3])
+scale = max(abs(r[1]) for r in g1)
+worst = max(abs(a - b) for r1, r3 in zip(g1, g3) for a, b in zip(r1[1:], r3[1:])) / scale
+check(len(g1) == len(g3) and worst <= 1e-5,
+      f"per_sphere on 3 processes: sphere forces within 1e-5 of one process (worst {worst:.1e} of max |Fz|)")
+s1 = summary(ps[3])
+check(s1["distributed"]["ranks"] == 3, "per_sphere run on 3 processes")
+
 # --- bad input: every process stops, one message, exit 2, nothing written
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])
 check(r.returncode == 2, f"bad input on 2 processes exits 2 (got {r.returncode})")

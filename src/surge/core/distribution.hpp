@@ -15,6 +15,9 @@ struct Distribution {
   // Element-wise sum over processes of arrays in which at most one process holds a
   // non-zero value per element: x + 0 is exact, so the result is bitwise that process's.
   std::function<void(Real*, std::size_t)> sum_exact;
+  // Element-wise sum over processes of every process's values, in rank order: the same
+  // bits on every process for a given number of processes.
+  std::function<void(Real*, std::size_t)> sum_ordered;
   // The minimum over processes (exact in any order).
   std::function<double(double)> min;
 
@@ -22,6 +25,9 @@ struct Distribution {
   [[nodiscard]] bool owns(const Vec3& x) const { return !owns_point || owns_point(x); }
   void sum(Real* data, std::size_t n) const {
     if (sum_exact) sum_exact(data, n);
+  }
+  void sum_in_rank_order(Real* data, std::size_t n) const {
+    if (sum_ordered) sum_ordered(data, n);
   }
   [[nodiscard]] double minimum(double x) const { return min ? min(x) : x; }
 };

@@ -76,7 +76,7 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   par::fill(body_acc_, Vec3{});
   par::fill(body_pos_, Vec3{});
   detail::collect_bodies(sph.view(), first_id_, body_acc_.data(), body_pos_.data());
-  if (dist_.distributed()) {
+  if (dist_.distributed() && !per_sphere_) {
     // Every body particle's acceleration and position from the process that owns it: each
     // sphere then sums the same values in the same order as one process would.
     for (auto* b : {&body_acc_, &body_pos_}) {
@@ -90,6 +90,16 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   // Written straight into the DEM's held external force and moment.
   detail::sum_per_sphere(body_acc_.data(), body_pos_.data(), sph.params().mass, start_.data(), state_.data(),
                          n_spheres_, dem.external_force().data(), dem.external_torque().data());
+  if (dist_.distributed() && per_sphere_) {
+    // Each process summed the body particles it owns (the others are zero); the per-sphere
+    // sums are added in rank order, the same on every process.
+    for (auto* b : {&dem.external_force(), &dem.external_torque()}) {
+      std::vector<Vec3> h;
+      par::download(h, *b, b->size());
+      dist_.sum_in_rank_order(reinterpret_cast<Real*>(h.data()), 3 * h.size());
+      par::upload(*b, h);
+    }
+  }
 }
 
 void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {

@@ -36,7 +36,12 @@ public:
   // A distributed run: each process holds some body particles; their accelerations and
   // positions are combined before the per-sphere sums, and every process then advances
   // the same DEM with the same force (see ARCHITECTURE.md, distributed runs).
-  void set_distribution(const Distribution& d) { dist_ = d; }
+  // per_sphere: each process's per-sphere sums are combined in rank order instead of the
+  // body particles themselves (CouplingConfig::force_sum).
+  void set_distribution(const Distribution& d, bool per_sphere = false) {
+    dist_ = d;
+    per_sphere_ = per_sphere;
+  }
   [[nodiscard]] std::size_t n_body() const { return n_body_; }
   [[nodiscard]] Real dt_dem() const { return dt_dem_; }
 
@@ -50,6 +55,7 @@ private:
   par::Buffer<std::uint32_t> owner_, start_;
   par::Buffer<Vec3> body_acc_, body_pos_; // by body index: the last rates' acceleration and position
   Distribution dist_;
+  bool per_sphere_ = false;
   par::Buffer<dem::RigidState> state_;
 };
 

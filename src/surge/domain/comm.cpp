@@ -68,6 +68,21 @@ void sum(Real* x, std::size_t n) { allreduce(x, n, real_type(), MPI_SUM); }
 void min(double* x, std::size_t n) { allreduce(x, n, MPI_DOUBLE, MPI_MIN); }
 void max(double* x, std::size_t n) { allreduce(x, n, MPI_DOUBLE, MPI_MAX); }
 
+void sum_in_rank_order(Real* x, std::size_t n) {
+  const int p = size();
+  if (p == 1 || n == 0) return;
+  const CollectiveTimer timer;
+  std::vector<Real> all(n * static_cast<std::size_t>(p));
+  check(
+      MPI_Allgather(x, static_cast<int>(n), real_type(), all.data(), static_cast<int>(n), real_type(), MPI_COMM_WORLD),
+      "allgather");
+  for (std::size_t k = 0; k < n; ++k) {
+    Real s = all[k];
+    for (int r = 1; r < p; ++r) s += all[static_cast<std::size_t>(r) * n + k];
+    x[k] = s;
+  }
+}
+
 std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) {
   const CollectiveTimer timer;
   const int p = size();
@@ -119,6 +134,7 @@ void sum(double*, std::size_t) {}
 void sum(Real*, std::size_t) {}
 void min(double*, std::size_t) {}
 void max(double*, std::size_t) {}
+void sum_in_rank_order(Real*, std::size_t) {}
 std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) { return send; }
 std::vector<char> gather(const std::vector<char>& mine) { return mine; }
 #endif

@@ -22,6 +22,8 @@ void finalize();
 void sum(double* x, std::size_t n);
 void sum(Real* x, std::size_t n);
 void min(double* x, std::size_t n);
+// x[k] <- sum over processes of their x[k], added in rank order (the same bits everywhere).
+void sum_in_rank_order(Real* x, std::size_t n);
 void max(double* x, std::size_t n);
 [[nodiscard]] double min(double x);
 [[nodiscard]] double max(double x);

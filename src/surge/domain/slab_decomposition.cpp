@@ -105,6 +105,7 @@ Distribution SlabDecomposition::distribution() const {
   Distribution d;
   d.owns_point = [this](const Vec3& x) { return owns(x); };
   d.sum_exact = [](Real* x, std::size_t n) { comm::sum(x, n); };
+  d.sum_ordered = [](Real* x, std::size_t n) { comm::sum_in_rank_order(x, n); };
   d.min = [](double x) { return comm::min(x); };
   return d;
 }

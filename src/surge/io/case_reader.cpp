@@ -590,9 +590,13 @@ Case parse(const YAML::Node& root, Reader& r) {
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
   if (const auto cp = root["coupling"]; cp.IsDefined()) {
-    r.check_keys(cp, "coupling", {"body_layers"});
+    r.check_keys(cp, "coupling", {"body_layers", "force_sum"});
     c.coupling.body_layers = r.get(cp, "coupling", "body_layers", 0);
     if (c.coupling.body_layers < 0) r.fail(cp["body_layers"], "coupling.body_layers", "must not be negative");
+    c.coupling.force_sum = r.get(cp, "coupling", "force_sum", c.coupling.force_sum);
+    if (c.coupling.force_sum != "exact" && c.coupling.force_sum != "per_sphere")
+      r.fail(cp["force_sum"], "coupling.force_sum",
+             "must be exact (bitwise the same on any number of processes) or per_sphere (less traffic)");
   }
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
@@ -806,9 +810,8 @@ std::string to_yaml(const Case& c) {
     }
     e << YAML::EndSeq << YAML::EndMap;
   }
-  if (c.coupling.body_layers > 0)
-    e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap << YAML::Key << "body_layers" << YAML::Value
-      << c.coupling.body_layers << YAML::EndMap;
+  e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap << YAML::Key << "body_layers" << YAML::Value
+    << c.coupling.body_layers << YAML::Key << "force_sum" << YAML::Value << c.coupling.force_sum << YAML::EndMap;
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

@@ -23,7 +23,7 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
   slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach());
   dist_ = slabs_->distribution();
   solver.set_distribution(dist_);
-  if (coupling) coupling->set_distribution(dist_);
+  if (coupling) coupling->set_distribution(dist_, c.coupling.force_sum == "per_sphere");
 }
 
 bool DistributedRun::root() { return domain::comm::rank() == 0; }
