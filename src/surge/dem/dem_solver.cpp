@@ -116,20 +116,6 @@ SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real 
   mix_properties(ma, mb, ra, rb, in);
 }
 
-SURGE_HD inline const ContactSlot* find_slot(const ContactSlot* row, std::uint32_t partner) {
-  for (int k = 0; k < max_contacts; ++k)
-    if (row[k].partner == partner) return &row[k];
-  return nullptr;
-}
-
-SURGE_HD inline ContactSlot negated(const ContactSlot& s) {
-  ContactSlot o = s;
-  o.shear = s.shear * Real(-1);
-  o.roll = s.roll * Real(-1);
-  o.twist = s.twist * Real(-1);
-  return o;
-}
-
 // The wall triangles sphere (x, r) touches, one per point of contact: face contacts
 // first; an edge or vertex contact is dropped when an accepted triangle already
 // contains its point (the sphere is over that triangle's face, or the same edge or
@@ -210,9 +196,8 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, i
   return pair_terms(in, v.hist[p], dt);
 }
 
-// Each pair's stiffnesses and damping, once per list: the two-spring stiffnesses from each
-// sphere's 1/(E r) and 1/(E nu r) (the same bits as normal_stiffness / shear_stiffness)
-// and c_n from the reduced mass. Written by the pair's A sphere.
+// Each pair's stiffnesses and damping (mix_materials), once per list, written by the
+// pair's A sphere: the step reads them instead of recomputing two-spring series and c_n.
 void pair_laws(const DemView& v, const Material* mats) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int a) {
@@ -220,12 +205,10 @@ void pair_laws(const DemView& v, const Material* mats) {
         for (std::uint32_t k = 0; k < v.nnbr[a]; ++k) {
           const int b = static_cast<int>(v.nbr[base + k]);
           if (v.id[a] > v.id[b]) continue;
-          PairLaw law;
-          law.kn = 1 / (v.compliance[a].x + v.compliance[b].x);
-          law.ks = 1 / (v.compliance[a].y + v.compliance[b].y);
+          PairInput in;
           const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          law.cn = normal_damping(mats[v.material[a]], mats[v.material[b]], law.kn, mstar);
-          v.law[v.entry[base + k]] = law;
+          mix_materials(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar, in);
+          v.law[v.entry[base + k]] = {in.kn, in.ks, in.cn};
         }
       });
 }
@@ -415,15 +398,6 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         v.torque[i] = t;
         v.broken[i] += broken;
         v.ncontact[i] = static_cast<std::uint32_t>(used);
-      });
-}
-
-// c[i] = 1/(E r), 1/(E nu r) of sphere i.
-void compliances(int n, const Material* mats, const std::uint8_t* mat, const Real* radius, Compliance* c) {
-  par::parallel_for(
-      n, SURGE_LAMBDA(int i) {
-        const Material m = mats[mat[i]];
-        c[i] = {1 / (m.young * radius[i]), 1 / (m.young * m.nu * radius[i])};
       });
 }
 
@@ -628,7 +602,6 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   entry_.resize(s.size() * max_contacts);
   par::fill(entry_, no_partner);
   pos_built_.resize(s.size());
-  derive_compliance();
   list_valid_ = false;
   skin_ = Real(0.1) * max_radius_;
   grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
@@ -647,7 +620,6 @@ DemView DemSolver::view() {
           inertia_.data(),
           material_.data(),
           id_.data(),
-          compliance_.data(),
           nbr_.data(),
           nnbr_.data(),
           entry_.data(),
@@ -690,7 +662,6 @@ void DemSolver::sort_spheres() {
   par::gather(mass_, tmp1_, perm, n_);
   par::gather(inertia_, tmp1_, perm, n_);
   par::gather(material_, tmpb_, perm, n_);
-  par::gather(compliance_, tmp2_, perm, n_);
   par::gather(fixed_, tmpb_, perm, n_);
   par::gather(id_, tmpu_, perm, n_);
   par::gather(broken_, tmpu_, perm, n_);
@@ -717,7 +688,6 @@ void DemSolver::rebuild_list() {
   n_pairs_ = algo::exclusive_scan(pair_count_.data(), pair_begin_.data(), n_);
   hist_.resize(n_pairs_);
   pair_.resize(n_pairs_);
-  v = view();
   law_.resize(n_pairs_);
   v = view();
   detail::fill_pairs(v, hist_old_.data());
@@ -725,11 +695,6 @@ void DemSolver::rebuild_list() {
   detail::pair_laws(v, materials_.data());
   par::copy(pos_built_, pos_);
   list_valid_ = true;
-}
-
-void DemSolver::derive_compliance() {
-  compliance_.resize(static_cast<std::size_t>(n_));
-  detail::compliances(n_, materials_.data(), material_.data(), radius_.data(), compliance_.data());
 }
 
 bool DemSolver::list_stale() {
@@ -842,7 +807,6 @@ void DemSolver::restore(const std::string& bytes) {
   pair_.resize(pairs);
   law_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
-  derive_compliance(); // from the restored materials and radii, in the restored order
   detail::pair_laws(view(), materials_.data());
   list_valid_ = valid == 1;
 }

@@ -80,11 +80,6 @@ struct ContactSlot {
   std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
 };
 
-// A sphere's share of the two-spring stiffnesses: x = 1/(E r), y = 1/(E nu r).
-struct Compliance {
-  Real x = 0, y = 0;
-};
-
 // A pair's normal and shear stiffness and normal damping, fixed while it is listed.
 struct PairLaw {
   Real kn = 0, ks = 0, cn = 0;
@@ -113,7 +108,6 @@ struct DemView {
   Real *radius, *mass, *inertia;
   std::uint8_t* material;
   std::uint32_t* id;
-  const Compliance* compliance;
   std::uint32_t* nbr;                     // max_contacts per sphere: the listed partners' indices
   std::uint32_t* nnbr;                    // listed partners per sphere
   std::uint32_t* entry;                   // max_contacts per sphere: the pair of each listed partner
@@ -178,8 +172,6 @@ private:
   template <class Self, class F>
   static void for_each_state_buffer(Self& s, F&& f);
   void sort_spheres();
-  // compliance_ from each sphere's material and radius.
-  void derive_compliance();
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
   void rebuild_list();
   // Whether some sphere has moved more than half the skin since the list was built.
@@ -214,7 +206,6 @@ private:
   par::Buffer<PairLaw> law_;
   std::uint32_t n_pairs_ = 0;
   par::Buffer<Vec3> pos_built_; // positions when the list was built
-  par::Buffer<Compliance> compliance_, tmp2_;
   bool list_valid_ = false;
   Real skin_ = 0;
 };
