@@ -26,9 +26,6 @@ struct Distribution {
   void sum(Real* data, std::size_t n) const {
     if (sum_exact) sum_exact(data, n);
   }
-  void sum_in_rank_order(Real* data, std::size_t n) const {
-    if (sum_ordered) sum_ordered(data, n);
-  }
   [[nodiscard]] double minimum(double x) const { return min ? min(x) : x; }
 };
 

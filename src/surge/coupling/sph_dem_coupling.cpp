@@ -66,6 +66,16 @@ SphDemCoupling::SphDemCoupling(const BodyLayout& layout, int n_spheres, Real dt_
   body_pos_.resize(n_body_);
 }
 
+namespace {
+// b's vectors combined across processes by `sum` (a Distribution member), through the host.
+void combine(par::Buffer<Vec3>& b, const std::function<void(Real*, std::size_t)>& sum) {
+  std::vector<Vec3> h;
+  par::download(h, b, b.size());
+  sum(reinterpret_cast<Real*>(h.data()), 3 * h.size());
+  par::upload(b, h);
+}
+} // namespace
+
 void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   sph.refresh(); // accelerations must describe the current body positions
   sum_forces(sph, dem);
@@ -73,18 +83,17 @@ void SphDemCoupling::reduce_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
 
 void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto t = par::timed(par::Phase::Coupling);
-  par::fill(body_acc_, Vec3{});
-  par::fill(body_pos_, Vec3{});
+  // One process holds every body particle and writes every entry; a distributed one holds
+  // some, and the entries of the others must read zero.
+  if (dist_.distributed()) {
+    par::fill(body_acc_, Vec3{});
+    par::fill(body_pos_, Vec3{});
+  }
   detail::collect_bodies(sph.view(), first_id_, body_acc_.data(), body_pos_.data());
   if (dist_.distributed() && !per_sphere_) {
     // Every body particle's acceleration and position from the process that owns it: each
     // sphere then sums the same values in the same order as one process would.
-    for (auto* b : {&body_acc_, &body_pos_}) {
-      std::vector<Vec3> h;
-      par::download(h, *b, b->size());
-      dist_.sum(reinterpret_cast<Real*>(h.data()), 3 * h.size());
-      par::upload(*b, h);
-    }
+    for (auto* b : {&body_acc_, &body_pos_}) combine(*b, dist_.sum_exact);
   }
   dem.rigid_states(state_);
   // Written straight into the DEM's held external force and moment.
@@ -93,12 +102,7 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   if (dist_.distributed() && per_sphere_) {
     // Each process summed the body particles it owns (the others are zero); the per-sphere
     // sums are added in rank order, the same on every process.
-    for (auto* b : {&dem.external_force(), &dem.external_torque()}) {
-      std::vector<Vec3> h;
-      par::download(h, *b, b->size());
-      dist_.sum_in_rank_order(reinterpret_cast<Real*>(h.data()), 3 * h.size());
-      par::upload(*b, h);
-    }
+    for (auto* b : {&dem.external_force(), &dem.external_torque()}) combine(*b, dist_.sum_ordered);
   }
 }
 

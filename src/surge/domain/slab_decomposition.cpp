@@ -22,8 +22,12 @@ struct Record {
   std::uint8_t kind, halo;
 };
 
+Record record(const particles::HostParticles& h, std::size_t i) {
+  return {h.pos[i], h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i], h.id[i], h.kind[i], 0};
+}
+
 void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i) {
-  const Record r{h.pos[i], h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i], h.id[i], h.kind[i], 0};
+  const Record r = record(h, i);
   const auto at = out.size();
   out.resize(at + sizeof(Record));
   std::memcpy(out.data() + at, &r, sizeof(Record));
@@ -42,10 +46,7 @@ void push(particles::HostParticles& h, const Record& r, std::uint8_t halo) {
 }
 
 void push(particles::HostParticles& dst, const particles::HostParticles& src, std::size_t i, std::uint8_t halo) {
-  push(dst,
-       Record{src.pos[i], src.vel[i], src.vel_prev[i], src.rho[i], src.rho_prev[i], src.press[i], src.id[i],
-              src.kind[i], 0},
-       halo);
+  push(dst, record(src, i), halo);
 }
 
 void unpack(const std::vector<char>& in, particles::HostParticles& h, std::uint8_t halo) {
@@ -93,7 +94,10 @@ SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reac
   for (int r = 0; r <= p; ++r) cuts_[r] = lo_ + (hi_ - lo_) * r / p;
   cuts_.front() = -std::numeric_limits<double>::infinity();
   cuts_.back() = std::numeric_limits<double>::infinity();
+  cuts_changed();
 }
+
+void SlabDecomposition::cuts_changed() { par::upload(cuts_dev_, cuts_); }
 
 SlabView SlabDecomposition::host_view() const { return {cuts_.data(), comm::size(), comm::rank(), reach_}; }
 
@@ -138,6 +142,7 @@ void SlabDecomposition::cuts_from(const std::vector<double>& hist) {
     if (take) cum += hist[b++];
     cuts_[r] = lo_ + static_cast<double>(b) * bin_;
   }
+  cuts_changed();
 }
 
 void SlabDecomposition::balance(const particles::HostParticles& all) {
@@ -167,19 +172,17 @@ bool SlabDecomposition::rebalance(const std::vector<Real>& x, const std::vector<
 
 ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const {
   require_history(all);
-  const int me = comm::rank();
+  const SlabView sv = host_view();
   particles::HostParticles mine, halo;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (removed(all, i)) continue;
     const Real x = all.pos[i][axis_];
-    const int o = owner(x);
-    if (o == me)
+    if (sv.owner(x) == sv.me)
       push(mine, all, i, 0);
-    else if (static_cast<double>(x) >= cuts_[me] - reach_ && static_cast<double>(x) < cuts_[me + 1] + reach_)
+    else if (sv.in_reach_of(x, sv.me))
       push(halo, all, i, 1);
   }
   ExchangeStats s;
-  s.owned = mine.size();
   s.halo = halo.size();
   for (std::size_t i = 0; i < halo.size(); ++i) push(mine, halo, i, 1);
   all = std::move(mine);
@@ -187,11 +190,12 @@ ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const
 }
 
 void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const {
-  const int me = comm::rank(), p = comm::size();
+  const SlabView sv = host_view();
   for (std::size_t i = 0; i < h.size(); ++i) {
-    const auto x = static_cast<double>(h.pos[i][axis_]);
-    for (int r = me - 1; r >= 0 && x < cuts_[r + 1] + reach_; --r) append(out[r], h, i);
-    for (int r = me + 1; r < p && x >= cuts_[r] - reach_; ++r) append(out[r], h, i);
+    const Real x = h.pos[i][axis_];
+    // Slabs are ordered: walk away from this one while x is within reach.
+    for (int r = sv.me - 1; r >= 0 && sv.in_reach_of(x, r); --r) append(out[r], h, i);
+    for (int r = sv.me + 1; r < sv.ranks && sv.in_reach_of(x, r); ++r) append(out[r], h, i);
   }
 }
 
@@ -231,7 +235,6 @@ void compact(int n, const std::uint8_t* code, const std::uint32_t* at, std::uint
 void SlabDecomposition::select(particles::ParticleStore& store, std::vector<std::uint32_t>& drop,
                                std::vector<std::uint32_t>& leave, std::vector<std::uint32_t>& near) {
   const int n = store.size();
-  par::upload(cuts_dev_, cuts_);
   SlabView sv = host_view();
   sv.cuts = cuts_dev_.data();
   const auto scratch = store.exchange_scratch();
@@ -269,7 +272,6 @@ ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const
   particles::HostParticles leaving, staying;
   store.extract(leave, leaving);
   store.extract(near, staying);
-  s.migrated = leave.size();
   std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
   for (std::size_t i = 0; i < leaving.size(); ++i) append(out[owner(leaving.pos[i][axis_])], leaving, i);
   for (const auto& o : out) s.bytes_sent += o.size();
@@ -279,14 +281,9 @@ ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const
   for (auto& o : out) o.clear();
   halo_records(staying, out);
   halo_records(arrived, out);
-  for (const auto& o : out) {
-    s.bytes_sent += o.size();
-    s.halo_sent += o.size() / sizeof(Record);
-  }
+  for (const auto& o : out) s.bytes_sent += o.size();
   for (const auto& in : comm::all_to_all(out)) unpack(in, halo, 1);
   s.halo = halo.size();
-  s.owned =
-      static_cast<std::size_t>(store.size()) - drop.size() + arrived.size(); // removed ones included until the sort
   for (std::size_t i = 0; i < halo.size(); ++i) push(arrived, halo, i, 1);
   store.remove(drop);
   store.append(arrived);

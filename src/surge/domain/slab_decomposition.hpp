@@ -31,17 +31,19 @@ struct SlabView {
     }
     return lo;
   }
-  [[nodiscard]] SURGE_HD bool near_other(Real x) const {
+  // x lies within reach of slab r: process r needs a halo copy of it.
+  [[nodiscard]] SURGE_HD bool in_reach_of(Real x, int r) const {
     const auto xd = static_cast<double>(x);
-    return (me > 0 && xd < cuts[me] + reach) || (me + 1 < ranks && xd >= cuts[me + 1] - reach);
+    return xd >= cuts[r] - reach && xd < cuts[r + 1] + reach;
+  }
+  // x, owned here, lies within reach of another slab (slabs are ordered, so of a neighbour).
+  [[nodiscard]] SURGE_HD bool near_other(Real x) const {
+    return (me > 0 && in_reach_of(x, me - 1)) || (me + 1 < ranks && in_reach_of(x, me + 1));
   }
 };
 
 struct ExchangeStats {
-  std::size_t migrated = 0;   // particles this process handed to another owner
-  std::size_t halo_sent = 0;  // halo copies this process sent
-  std::size_t bytes_sent = 0; // both, in bytes
-  std::size_t owned = 0;      // particles this process owns after the exchange
+  std::size_t bytes_sent = 0; // leavers and halo copies this process sent, in bytes
   std::size_t halo = 0;       // halo copies it holds
   bool rebalanced = false;    // the faces moved before this exchange
 };
@@ -90,6 +92,8 @@ private:
   [[nodiscard]] std::vector<double> histogram(std::size_t n, X x, W weight) const;
   bool rebalance(const std::vector<Real>& x, const std::vector<std::uint8_t>& state, const Balance& b);
   void cuts_from(const std::vector<double>& hist);
+  // cuts_ changed: the execution-space copy follows (once per change, not per exchange).
+  void cuts_changed();
   // Appends to `out[r]` the records of the particles of `h` within reach of slab r != this one.
   void halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const;
   [[nodiscard]] SlabView host_view() const;

@@ -301,17 +301,22 @@ void upload_range(Buffer<T>& dst, const std::vector<T>& src, std::size_t offset)
   std::copy(src.begin(), src.end(), dst.data() + offset);
 #endif
 }
-// dst <- src[offset, offset + n)
+// dst <- src[0, n), src in the execution space (a view into a Buffer).
 template <class T>
-void download_range(std::vector<T>& dst, const Buffer<T>& src, std::size_t offset, std::size_t n) {
+void download_ptr(std::vector<T>& dst, const T* src, std::size_t n) {
   dst.resize(n);
   if (n == 0) return;
 #if defined(SURGE_BACKEND_CUDA)
-  check_cuda(cudaMemcpy(dst.data(), src.data() + offset, n * sizeof(T), cudaMemcpyDeviceToHost), "download");
+  check_cuda(cudaMemcpy(dst.data(), src, n * sizeof(T), cudaMemcpyDeviceToHost), "download");
 #else
   const devcheck::Open access;
-  std::copy(src.data() + offset, src.data() + offset + n, dst.data());
+  std::copy(src, src + n, dst.data());
 #endif
+}
+// dst <- src[offset, offset + n)
+template <class T>
+void download_range(std::vector<T>& dst, const Buffer<T>& src, std::size_t offset, std::size_t n) {
+  download_ptr(dst, src.data() + offset, n);
 }
 template <class T>
 void download(std::vector<T>& dst, const Buffer<T>& src, std::size_t n) {

@@ -126,15 +126,17 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
 namespace detail {
 // Free functions in a named namespace: nvcc's extended lambdas need an enclosing function
 // with external linkage.
-// out[k] <- field[idx[k]] on the host, through a scratch buffer of the selection's size.
+// out[k] <- field[idx[k]] on the host, through `scratch` (kept by the store: no allocation
+// per exchange once it has grown; Buffer memory is 64-byte aligned, so any T fits).
 template <class T>
-void gather_to_host(const par::Buffer<T>& field, const std::uint32_t* idx, int n, std::vector<T>& out) {
-  par::Buffer<T> tmp(static_cast<std::size_t>(n));
-  T* o = tmp.data();
+void gather_to_host(const par::Buffer<T>& field, const std::uint32_t* idx, int n, par::Buffer<unsigned char>& scratch,
+                    std::vector<T>& out) {
+  scratch.resize(static_cast<std::size_t>(n) * sizeof(T));
+  T* o = reinterpret_cast<T*>(scratch.data());
   const T* in = field.data();
   par::parallel_for(
       n, SURGE_LAMBDA(int k) { o[k] = in[idx[k]]; });
-  par::download(out, tmp, static_cast<std::size_t>(n));
+  par::download_ptr(out, static_cast<const T*>(o), static_cast<std::size_t>(n));
 }
 // Grows the field by the host values, keeping what it holds.
 template <class T>
@@ -173,14 +175,14 @@ void ParticleStore::extract(const std::vector<std::uint32_t>& idx, HostParticles
   const int n = static_cast<int>(idx.size());
   par::upload(idx_, idx);
   const std::uint32_t* k = idx_.data();
-  detail::gather_to_host(pos_, k, n, out.pos);
-  detail::gather_to_host(vel_, k, n, out.vel);
-  detail::gather_to_host(vel_prev_, k, n, out.vel_prev);
-  detail::gather_to_host(rho_, k, n, out.rho);
-  detail::gather_to_host(rho_prev_, k, n, out.rho_prev);
-  detail::gather_to_host(press_, k, n, out.press);
-  detail::gather_to_host(kind_, k, n, out.kind);
-  detail::gather_to_host(id_, k, n, out.id);
+  detail::gather_to_host(pos_, k, n, extract_, out.pos);
+  detail::gather_to_host(vel_, k, n, extract_, out.vel);
+  detail::gather_to_host(vel_prev_, k, n, extract_, out.vel_prev);
+  detail::gather_to_host(rho_, k, n, extract_, out.rho);
+  detail::gather_to_host(rho_prev_, k, n, extract_, out.rho_prev);
+  detail::gather_to_host(press_, k, n, extract_, out.press);
+  detail::gather_to_host(kind_, k, n, extract_, out.kind);
+  detail::gather_to_host(id_, k, n, extract_, out.id);
   out.halo.assign(idx.size(), 0);
 }
 
@@ -218,7 +220,8 @@ std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
   for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b += x->bytes();
   for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b += x->bytes();
-  return b + kind_.bytes() + cls_.bytes() + halo_.bytes() + id_.bytes() + tmpu_.bytes();
+  return b + kind_.bytes() + cls_.bytes() + halo_.bytes() + id_.bytes() + tmpu_.bytes() + idx_.bytes() +
+         extract_.bytes();
 }
 
 } // namespace surge::particles

@@ -106,7 +106,8 @@ private:
   par::Buffer<std::uint8_t> kind_, cls_, halo_;
   par::Buffer<std::uint32_t> id_;
   par::Buffer<std::uint32_t> tmpu_;
-  par::Buffer<std::uint32_t> idx_; // the exchange's selection
+  par::Buffer<std::uint32_t> idx_;     // the exchange's selection
+  par::Buffer<unsigned char> extract_; // its gathered fields, one at a time
 };
 
 } // namespace surge::particles

@@ -45,19 +45,18 @@ public:
   // Over processes: owned particles, a sum of per-process values.
   [[nodiscard]] long owned_particles();
   [[nodiscard]] static double total(double per_process);
-  // For summary.json: exchange time and traffic of this process.
-  struct Traffic {
-    long exchanges = 0, rebalances = 0;
-    double seconds = 0, bytes_sent = 0;
-    long halo_now = 0;
-  };
-  [[nodiscard]] Traffic traffic() const { return traffic_; }
   // Collective: the least and most time any process spent in collective calls (the
   // busiest process waits least; the difference is the load imbalance).
   void measure_waits();
   [[nodiscard]] std::string summary_json() const;
 
 private:
+  // For summary.json: exchange time and traffic of this process.
+  struct Traffic {
+    long exchanges = 0, rebalances = 0;
+    double seconds = 0, bytes_sent = 0;
+    long halo_now = 0;
+  };
   sph::WcsphSolver& solver_;
   std::optional<domain::SlabDecomposition> slabs_;
   Distribution dist_;
