@@ -178,28 +178,6 @@ TEST(WcsphSolver, FourtakasDiffusionLeavesHydrostaticColumnAlone) {
   EXPECT_LT(std::abs(fourtakas), 0.05 * std::abs(plain)) << "plain " << plain << ", fourtakas " << fourtakas;
 }
 
-// Height gauges over still water 0.1 m deep with a sheet of spray (two layers) at 0.2 m:
-// the default `column` reading is the top of the water standing on the bed, the
-// `highest` reading the top of the spray. The 0.5 level of the kernel-smoothed fraction
-// lies within dp/2 of a lattice box's top. A dry line reads the bed (the floor, z = 0).
-TEST(Gauges, ColumnReadingIgnoresSprayAboveAnAirGap) {
-  const double dp = 0.01;
-  const Case c = io::read_case_text(
-      "name: spray\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
-      "fluid: [{box: {min: [0,0,0], max: [0.2,0.1,0.1]}}, {box: {min: [0,0,0.2], max: [0.2,0.1,0.22]}}]\n"
-      "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: [zmax]}]\n"
-      "gauges: [{name: col, type: height, x: 0.1, y: 0.05}, {name: top, type: height, x: 0.1, y: 0.05, "
-      "surface: highest}, {name: dry, type: height, x: 0.26, y: 0.05}]\n",
-      "spray.yaml");
-  const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver s(c, init);
-  sph::Gauges g(c, init);
-  const auto v = g.sample(s);
-  EXPECT_NEAR(v[0], 0.10, dp / 2);
-  EXPECT_NEAR(v[1], 0.22, dp / 2);
-  EXPECT_NEAR(v[2], 0.0, dp / 2);
-}
-
 // A fluid box that is not a whole number of spacings: the demo's 0.146 m column at
 // dp = 0.01 holds 14 particles across, centred, so the water leaves 3 mm on each side
 // instead of 6 mm on one; a mirrored copy of the box gets the mirrored lattice.

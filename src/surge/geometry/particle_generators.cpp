@@ -158,7 +158,9 @@ bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) 
     const double d = signed_distance(*mesh, p);
     return d < 0.5 * dp && (w.solid || d > -4 * dp);
   }
-  return w.solid && w.box.contains(p, 0.5 * dp);
+  // Water dp/2 from a solid box's face is where it belongs (as at a tank's faces): only
+  // closer than that is blocked (1e-6 dp of slack, so that a lattice point on dp/2 stays).
+  return w.solid && w.box.contains(p, 0.5 * dp * (1 - 1e-6));
 }
 
 } // namespace surge::geometry

@@ -1,9 +1,16 @@
 #include "surge/sph/gauges.hpp"
 
+#include "surge/geometry/bed.hpp"
+
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace surge::sph {
 namespace {
+bool needs_bed(const Case& c) {
+  return std::any_of(c.gauges.begin(), c.gauges.end(), [](const GaugeSpec& g) { return g.type == GaugeType::Height; });
+}
 // Where the fraction crosses 0.5 between a sample at z (fraction f0) and the one dz above (f1).
 double crossing(double z, double dz, double f0, double f1) { return z + dz * (f0 - 0.5) / (f0 - f1); }
 } // namespace
@@ -23,13 +30,23 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   dz_ = c.dp / 4;
   const Vec3d o = init.origin;
   origin_z_ = o.z;
+  std::vector<std::unique_ptr<geometry::Mesh>> meshes;
+  for (const auto& w : c.walls)
+    meshes.push_back(w.is_mesh && needs_bed(c) ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path))
+                                               : nullptr);
   for (const auto& g : c.gauges) {
     Probe pr{g, static_cast<int>(points_host_.size()), 0, 0, 0};
     names_.push_back(g.name);
     if (g.type == GaugeType::Height) {
-      // Sample points up the vertical line, from the domain bottom to its top.
-      const int n = static_cast<int>(std::ceil((c.domain.max.z - c.domain.min.z) / dz_)) + 1;
-      for (int k = 0; k < n; ++k) points_host_.push_back(Vec3(Vec3d{g.x, g.y, c.domain.min.z + k * dz_} - o));
+      // Sample points up the vertical line, from the bed (the highest upward-facing wall
+      // surface on the line, inside the domain) or, with no wall below, the domain bottom.
+      double z0 = c.domain.min.z;
+      for (std::size_t w = 0; w < c.walls.size(); ++w)
+        if (const auto bed = geometry::bed_below(c.walls[w], meshes[w].get(), g.x, g.y);
+            bed && *bed > z0 && *bed < c.domain.max.z)
+          z0 = *bed;
+      const int n = static_cast<int>(std::ceil((c.domain.max.z - z0) / dz_)) + 1;
+      for (int k = 0; k < n; ++k) points_host_.push_back(Vec3(Vec3d{g.x, g.y, z0 + k * dz_} - o));
       pr.n_samples = n;
     } else if (g.type == GaugeType::Pressure || g.type == GaugeType::Velocity) {
       points_host_.push_back(Vec3(g.at - o));
@@ -109,24 +126,30 @@ Vec3d Gauges::wall_force(WcsphSolver& solver, const Probe& pr, const Distributio
   return f * static_cast<double>(solver.params().mass);
 }
 
-// What a wave gauge reads: the top of the water standing on the bed. Up the line, the
-// filled fraction (water and wall together) first reaches 0.5 at the bed or in the water
-// on it, and the surface is where it next falls below 0.5, interpolated between samples.
-// Spray above an air gap is not counted. A dry line reads the bed (or, where no wall is
-// below the line, its lowest point).
+// What a wave gauge reads: the top of the water standing on the bed. The samples start at
+// the bed's face, where the filled fraction (water and wall together) is about 1/2 when
+// dry and near 1 under water; the surface is where the fraction, going up, next falls
+// below 0.5, interpolated between samples. Water above an air gap (a sheet thrown over an
+// obstacle, spray) is not counted, so a dry bed reads the bed whatever flies above it.
+// Within 1.5 spacings of the face a fraction under 0.5 is not an air gap: the fraction at
+// the face itself comes out anywhere from 0.45 to 0.55 (a coarse wall, a sloping mesh),
+// and water on the bed stands off it by up to 1.5 spacings (the lattice next to a slope,
+// the dynamic boundary's gap). The column starts at the highest filled sample there.
 double Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) const {
   const auto filled = [&](int k) {
     const PointSums& s = sums[pr.first_sample + k];
     return static_cast<double>(s.vw + s.vw_solid);
   };
-  int k = 0;
-  while (k < pr.n_samples && filled(k) < 0.5) ++k; // below the tank, if the line starts there
-  if (k == pr.n_samples) return points_host_[pr.first_sample].z;
+  const auto z = [&](int k) { return static_cast<double>(points_host_[pr.first_sample + k].z); };
+  const int near_face = 6; // samples within 1.5 dp of the face (dz = dp / 4)
+  int k = std::min(pr.n_samples - 1, near_face);
+  while (k >= 0 && filled(k) < 0.5) --k;
+  if (k < 0) return z(0); // dry
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
-    if (f1 < 0.5) return crossing(points_host_[pr.first_sample + k].z, dz_, f0, f1);
+    if (f1 < 0.5) return crossing(z(k), dz_, f0, f1);
   }
-  return points_host_[pr.first_sample + pr.n_samples - 1].z;
+  return z(pr.n_samples - 1);
 }
 
 // The highest z where the fluid fraction reaches 0.5, interpolated between samples: the

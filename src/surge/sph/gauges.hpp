@@ -11,11 +11,12 @@
 namespace surge::sph {
 
 // Kernel sums at a point over fluid particles: sum V W, sum V W p, sum V W v; and
-// sum V W over fluid and wall particles together (water or solid around the point).
+// sum V W over wall and body particles (solid around the point: a slide's spheres under
+// the water are part of the column a wave gauge reads, not an air gap in it).
 struct PointSums {
   Real vw = 0, vwp = 0;
   Vec3 vwv{};
-  Real vw_solid = 0; // walls only; vw + vw_solid is the filled fraction
+  Real vw_solid = 0; // walls and bodies; vw + vw_solid is the filled fraction
 };
 static_assert(sizeof(PointSums) == 6 * sizeof(Real), "PointSums is combined across processes as 6 Reals");
 
@@ -23,9 +24,10 @@ static_assert(sizeof(PointSums) == 6 * sizeof(Real), "PointSums is combined acro
                                                    const particles::ParticleView& p, const Vec3& x) {
   PointSums s;
   const Real r2max = prm.kernel.support() * prm.kernel.support();
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall),
+             body = static_cast<std::uint8_t>(Kind::Body);
   neighbour::for_each_neighbour(g, x, r2max, [&](int j, const Vec3&, Real r2) {
-    if (p.kind[j] == wall) s.vw_solid += prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
+    if (p.kind[j] == wall || p.kind[j] == body) s.vw_solid += prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     if (p.kind[j] != fluid) return;
     const Real vw = prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     s.vw += vw;

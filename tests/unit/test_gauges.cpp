@@ -1,0 +1,149 @@
+// Wave gauges (column reading): the water standing on the bed, whatever flies above it.
+// Each case is read at its initial state, where the answer is known from the lattice: the
+// 0.5 level of the kernel-smoothed filled fraction lies within dp/2 of a lattice box's
+// top, and a dry bed's face reads within dp/2 of the face.
+#include "test_helpers.hpp"
+
+#include "surge/sph/gauges.hpp"
+#include "surge/sph/wcsph_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+using namespace surge;
+
+namespace {
+
+std::vector<double> read_gauges(const std::string& text) {
+  const Case c = io::read_case_text(text, "gauges.yaml");
+  const auto init = sph::build_initial_state(c);
+  sph::WcsphSolver s(c, init);
+  sph::Gauges g(c, init);
+  return g.sample(s);
+}
+
+// Height gauges at n points along x from x0 in steps of dx (not a multiple of dp, so the
+// lines fall at every offset from the wall lattice), at y = 0.05.
+std::string lines(int n, double x0, double dx, const std::string& extra = "") {
+  std::string s = "gauges: [";
+  for (int k = 0; k < n; ++k)
+    s += std::string(k ? ", " : "") + "{name: H" + std::to_string(k) +
+         ", type: height, x: " + std::to_string(x0 + k * dx) + ", y: 0.05" + extra + "}";
+  return s + "]\n";
+}
+
+// A tilted plane z = z0 + slope x, normal up, as an ascii STL over x, y in [-0.05, 0.35].
+std::string write_slope(double z0, double slope) {
+  const auto path = std::filesystem::temp_directory_path() / ("surge_slope_" + std::to_string(::getpid()) + ".stl");
+  auto z = [&](double x) { return std::to_string(z0 + slope * x); };
+  const std::string a = "-0.05 -0.05 " + z(-0.05), b = "0.35 -0.05 " + z(0.35), c = "0.35 0.15 " + z(0.35),
+                    d = "-0.05 0.15 " + z(-0.05);
+  std::ofstream f(path);
+  f << "solid slope\n"
+    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << b << "\n   vertex " << c
+    << "\n  endloop\n endfacet\n"
+    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << c << "\n   vertex " << d
+    << "\n  endloop\n endfacet\nendsolid slope\n";
+  return path.string();
+}
+
+const std::string tank = "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: [zmax]}";
+
+} // namespace
+
+// Height gauges over still water 0.1 m deep with a sheet of spray (two layers) at 0.2 m:
+// the default `column` reading is the top of the water standing on the bed, the
+// `highest` reading the top of the spray. A dry line reads the bed (the floor, z = 0).
+TEST(Gauges, ColumnReadingIgnoresSprayAboveAnAirGap) {
+  const double dp = 0.01;
+  const auto v =
+      read_gauges("name: spray\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
+                  "fluid: [{box: {min: [0,0,0], max: [0.2,0.1,0.1]}}, {box: {min: [0,0,0.2], max: [0.2,0.1,0.22]}}]\n" +
+                  tank + "]\n" +
+                  "gauges: [{name: col, type: height, x: 0.1, y: 0.05}, {name: top, type: height, x: 0.1, y: 0.05, "
+                  "surface: highest}, {name: dry, type: height, x: 0.26, y: 0.05}]\n");
+  EXPECT_NEAR(v[0], 0.10, dp / 2);
+  EXPECT_NEAR(v[1], 0.22, dp / 2);
+  EXPECT_NEAR(v[2], 0.0, dp / 2);
+}
+
+// A dry floor under a sheet of water (a jet thrown over an obstacle): every line reads the
+// floor, at every offset from the wall lattice and for coarse and fine kernels (the filled
+// fraction at the face comes out between about 0.45 and 0.55); `highest` reads the sheet.
+TEST(Gauges, DryBedUnderASheetReadsTheBed) {
+  const double dp = 0.01;
+  for (const char* h : {"1.0", "1.2", "1.5"}) {
+    const auto v = read_gauges("name: sheet\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) +
+                               "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
+                               "fluid: [{box: {min: [0,0,0.15], max: [0.3,0.1,0.17]}}]\n" +
+                               tank + "]\n" + lines(9, 0.1, 0.00123));
+    for (std::size_t k = 0; k < v.size(); ++k) EXPECT_NEAR(v[k], 0.0, dp / 2) << "h/dp " << h << ", line " << k;
+    const auto top = read_gauges("name: sheet\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) +
+                                 "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
+                                 "fluid: [{box: {min: [0,0,0.15], max: [0.3,0.1,0.17]}}]\n" +
+                                 tank + "]\n" + lines(3, 0.1, 0.00123, ", surface: highest"));
+    for (double t : top) EXPECT_NEAR(t, 0.17, dp / 2) << "h/dp " << h;
+  }
+}
+
+// A sloping mesh bed (z = 0.02 + 0.25 x, a 14-degree solid slope in the tank): dry under a
+// sheet at 0.2 m it reads the slope's height under each line; under still water 0.12 m
+// deep it reads the water's top.
+TEST(Gauges, SlopingMeshBedReadsTheSlopeOrTheWaterOnIt) {
+  const double dp = 0.01;
+  const std::string slope = write_slope(0.02, 0.25);
+  const std::string walls = tank + ", {name: slope, mesh: " + slope + ", solid: true}]\n";
+  const std::string head = "name: slope\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
+  const int n = 13;
+  const double x0 = 0.04, dx = 0.0173;
+  const auto dry =
+      read_gauges(head + "fluid: [{box: {min: [0,0,0.2], max: [0.3,0.1,0.22]}}]\n" + walls + lines(n, x0, dx));
+  for (int k = 0; k < n; ++k) EXPECT_NEAR(dry[k], 0.02 + 0.25 * (x0 + k * dx), dp / 2) << "line " << k;
+  const auto wet =
+      read_gauges(head + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.12]}}]\n" + walls + lines(n, x0, dx));
+  for (int k = 0; k < n; ++k) EXPECT_NEAR(wet[k], 0.12, dp / 2) << "line " << k;
+  std::filesystem::remove(slope);
+}
+
+// A line that starts below the tank (the domain reaches 0.1 m under its floor): water
+// 0.1 m deep reads 0.1, the dry part of the floor under a sheet reads the floor, not the
+// domain's bottom or the sheet (the scan starts at the floor's face, not in the void or
+// the wall layers under it).
+TEST(Gauges, LineStartingBelowTheTankReadsFromTheFloor) {
+  const double dp = 0.01;
+  const auto v = read_gauges("name: below\ndp: 0.01\ndomain: {min: [0,0,-0.1], max: [0.3,0.1,0.3]}\n"
+                             "fluid: [{box: {min: [0,0,0], max: [0.15,0.1,0.1]}}, "
+                             "{box: {min: [0.15,0,0.2], max: [0.3,0.1,0.22]}}]\n" +
+                             tank + "]\n" +
+                             "gauges: [{name: wet, type: height, x: 0.07, y: 0.05}, "
+                             "{name: dry, type: height, x: 0.227, y: 0.05}, {name: dry2, type: height, x: 0.2444, "
+                             "y: 0.05}]\n");
+  EXPECT_NEAR(v[0], 0.10, dp / 2);
+  EXPECT_NEAR(v[1], 0.0, dp / 2);
+  EXPECT_NEAR(v[2], 0.0, dp / 2);
+}
+
+// A line over a solid box obstacle 0.05 m high: water 0.1 m deep reads 0.1; water 0.03 m
+// deep (below the box's top) with a sheet above reads the box's top, at every offset from
+// the lattice and for coarse and fine kernels.
+TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
+  const double dp = 0.01;
+  const std::string obstacle = tank + ", {name: box, box: {min: [0.1,0,0], max: [0.2,0.1,0.05]}, solid: true}]\n";
+  for (const char* h : {"1.0", "1.2", "1.5"}) {
+    const std::string head =
+        "name: box\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) + "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
+    const auto deep =
+        read_gauges(head + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}]\n" + obstacle + lines(9, 0.12, 0.00713));
+    for (double d : deep) EXPECT_NEAR(d, 0.10, dp / 2) << "h/dp " << h;
+    const auto dry = read_gauges(head +
+                                 "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.03]}}, "
+                                 "{box: {min: [0,0,0.2], max: [0.3,0.1,0.22]}}]\n" +
+                                 obstacle + lines(9, 0.12, 0.00713));
+    for (double d : dry) EXPECT_NEAR(d, 0.05, dp / 2) << "h/dp " << h;
+  }
+}
