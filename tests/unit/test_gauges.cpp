@@ -11,9 +11,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 using namespace surge;
 
@@ -35,21 +32,6 @@ std::string lines(int n, double x0, double dx, const std::string& extra = "") {
     s += std::string(k ? ", " : "") + "{name: H" + std::to_string(k) +
          ", type: height, x: " + std::to_string(x0 + k * dx) + ", y: 0.05" + extra + "}";
   return s + "]\n";
-}
-
-// A tilted plane z = z0 + slope x, normal up, as an ascii STL over x, y in [-0.05, 0.35].
-std::string write_slope(double z0, double slope) {
-  const auto path = std::filesystem::temp_directory_path() / ("surge_slope_" + std::to_string(::getpid()) + ".stl");
-  auto z = [&](double x) { return std::to_string(z0 + slope * x); };
-  const std::string a = "-0.05 -0.05 " + z(-0.05), b = "0.35 -0.05 " + z(0.35), c = "0.35 0.15 " + z(0.35),
-                    d = "-0.05 0.15 " + z(-0.05);
-  std::ofstream f(path);
-  f << "solid slope\n"
-    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << b << "\n   vertex " << c
-    << "\n  endloop\n endfacet\n"
-    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << c << "\n   vertex " << d
-    << "\n  endloop\n endfacet\nendsolid slope\n";
-  return path.string();
 }
 
 const std::string tank = "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: [zmax]}";
@@ -96,7 +78,7 @@ TEST(Gauges, DryBedUnderASheetReadsTheBed) {
 // deep it reads the water's top.
 TEST(Gauges, SlopingMeshBedReadsTheSlopeOrTheWaterOnIt) {
   const double dp = 0.01;
-  const std::string slope = write_slope(0.02, 0.25);
+  const std::string slope = test::write_slope(0.02, 0.25);
   const std::string walls = tank + ", {name: slope, mesh: " + slope + ", solid: true}]\n";
   const std::string head = "name: slope\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
   const int n = 13;

@@ -5,11 +5,30 @@
 #include "surge/particles/particle_store.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace surge::test {
+
+// A tilted plane z = z0 + slope x, normal up, as an ascii STL over x, y in [-0.05, 0.35].
+inline std::string write_slope(double z0, double slope) {
+  const auto path = std::filesystem::temp_directory_path() / ("surge_slope_" + std::to_string(::getpid()) + ".stl");
+  auto z = [&](double x) { return std::to_string(z0 + slope * x); };
+  const std::string a = "-0.05 -0.05 " + z(-0.05), b = "0.35 -0.05 " + z(0.35), c = "0.35 0.15 " + z(0.35),
+                    d = "-0.05 0.15 " + z(-0.05);
+  std::ofstream f(path);
+  f << "solid slope\n"
+    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << b << "\n   vertex " << c
+    << "\n  endloop\n endfacet\n"
+    << " facet normal 0 0 1\n  outer loop\n   vertex " << a << "\n   vertex " << c << "\n   vertex " << d
+    << "\n  endloop\n endfacet\nendsolid slope\n";
+  return path.string();
+}
 
 // A closed tank holding a water block; `shift` translates the whole case.
 inline std::string tank_case(double dp, double shift = 0.0, const std::string& extra = "") {

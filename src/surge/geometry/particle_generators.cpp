@@ -163,4 +163,22 @@ bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) 
   return w.solid && w.box.contains(p, 0.5 * dp * (1 - 1e-6));
 }
 
+bool behind_wall(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double band) {
+  if (w.is_mesh) {
+    const double d = signed_distance(*mesh, p);
+    return d < 0 && (w.solid || d > -band);
+  }
+  const Box& b = w.box;
+  if (w.solid) return b.contains(p, -1e-12); // strictly inside
+  // A tank: outside its interior, inside the layers around its closed faces.
+  const Face lowf[3] = {Face::XMin, Face::YMin, Face::ZMin}, highf[3] = {Face::XMax, Face::YMax, Face::ZMax};
+  bool outside = false;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = b.min[k] - (is_open(w, lowf[k]) ? 0 : band), hi = b.max[k] + (is_open(w, highf[k]) ? 0 : band);
+    if (p[k] < lo || p[k] > hi) return false; // beyond the layers, or through an open face
+    outside = outside || p[k] < b.min[k] || p[k] > b.max[k];
+  }
+  return outside;
+}
+
 } // namespace surge::geometry

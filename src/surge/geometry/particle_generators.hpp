@@ -26,5 +26,9 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
+// True if p lies behind a face of wall w, within its `band` of wall layers (a tank's
+// walls, not the open air beyond an open face or above its walls; inside a solid box;
+// behind a mesh surface): where no water can be.
+bool behind_wall(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double band);
 
 } // namespace surge::geometry

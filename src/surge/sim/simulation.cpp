@@ -11,6 +11,7 @@
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/distributed_run.hpp"
 #include "surge/sim/run_support.hpp"
+#include "surge/sim/wall_leaks.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
@@ -38,6 +39,7 @@ constexpr double bytes_per_particle_estimate = 150.0;
 struct Totals {
   long removed_domain = 0, removed_density = 0, non_finite = 0;
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}; // where (absolute)
+  LeakRecord leaks;                                          // fluid found inside walls at outputs
   [[nodiscard]] long removed() const { return removed_domain + removed_density + non_finite; }
 };
 
@@ -72,6 +74,7 @@ std::string summary_json(const Case& c, const sph::InitialState& init, const Ext
     j << ", \"where\": {\"min\": [" << tot.lo.x << ", " << tot.lo.y << ", " << tot.lo.z << "], \"max\": [" << tot.hi.x
       << ", " << tot.hi.y << ", " << tot.hi.z << "]}";
   j << "},\n"
+    << "  \"in_walls\": " << tot.leaks.json() << ",\n"
     << "  \"peak_rss_bytes\": " << rss << ",\n  \"bytes_per_particle\": " << (n_all > 0 ? rss / n_all : 0.0) << "\n}\n";
   return j.str();
 }
@@ -141,6 +144,14 @@ int check(const Case& c) {
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
               c.sound_speed());
+  {
+    const auto [lo, hi] = sph::fluid_region(c, init);
+    const Vec3d a = Vec3d(lo) + init.origin, b = Vec3d(hi) + init.origin;
+    std::printf("removal     fluid leaving x [%.4g, %.4g], y [%.4g, %.4g], z [%.4g, %.4g] m is removed (the domain, "
+                "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
+                "in_walls)\n",
+                a.x, b.x, a.y, b.y, a.z, b.z);
+  }
   std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
   std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow "
               "accelerates)\n",
@@ -236,6 +247,7 @@ int run(const Case& c, const RunOptions& opt) {
   }
 
   particles::HostParticles host;
+  const WallLeaks leaks(c);
   std::vector<std::vector<double>> rows;
   Totals tot, since_output;
   double t = 0;
@@ -316,6 +328,16 @@ int run(const Case& c, const RunOptions& opt) {
       std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
       io::write_spheres_vtp((out / "particles" / name).string(), sphere_frame(*cp->dem), init.origin);
       spheres_pvd->add(t, std::string("particles/") + name);
+    }
+    if (root) {
+      const LeakCount in_walls = leaks.count(host, init.origin);
+      tot.leaks.add(in_walls, t);
+      if (in_walls.count > 0 && !quiet)
+        std::fprintf(stderr,
+                     "%st = %.4f s: %ld fluid particles inside walls (first: %s) within x [%.3f, %.3f], y [%.3f, "
+                     "%.3f], z [%.3f, %.3f] m\n",
+                     opt.progress_tty ? "\n" : "", t, in_walls.count, in_walls.wall.c_str(), in_walls.lo.x,
+                     in_walls.hi.x, in_walls.lo.y, in_walls.hi.y, in_walls.lo.z, in_walls.hi.z);
     }
     frame_times.push_back(t);
     ++frame;

@@ -20,13 +20,6 @@
 
 namespace surge::sph {
 
-// Where a kernel finds each boundary particle's ghost node: x_g = x_b + offset[id - first_id].
-struct BoundaryGhosts {
-  bool on = false;
-  std::uint32_t first_id = 0;
-  const Vec3* offset = nullptr;
-};
-
 // Solves the 4x4 system a x = b in place (Gaussian elimination with partial pivoting);
 // returns det(a), 0 if singular.
 [[nodiscard]] SURGE_HD inline Real solve4(Real a[4][4], Real b[4]) {

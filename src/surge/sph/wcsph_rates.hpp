@@ -17,6 +17,7 @@
 #include "surge/particles/particle_store.hpp"
 #include "surge/sph/eos_tait.hpp"
 #include "surge/sph/kernel_wendland_c2.hpp"
+#include "surge/sph/no_penetration.hpp"
 
 namespace surge::sph {
 
@@ -24,6 +25,7 @@ struct WcsphParams {
   WendlandC2 kernel;
   TaitEos eos;
   Real mass = 1;           // rho0 dp^3, the same for every SPH particle
+  Real dp = 1;             // particle spacing
   Real alpha = Real(0.01); // artificial viscosity
   Real delta = Real(0.1);  // density diffusion
   bool fourtakas = false;  // diffuse only the dynamic part of density (Fourtakas et al. 2019)
@@ -38,10 +40,14 @@ struct Rates {
   Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;
   Real vsig = 0;
+  WallPlane wall; // fluid with mDBC: the nearest wall face below it (no_penetration.hpp)
 };
 
+// `gh`: with mDBC, the wall particles' ghost offsets, from which each fluid particle finds
+// the wall face nearest below it.
 [[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
-                                                const particles::ParticleView& p, int i) {
+                                                const particles::ParticleView& p, int i,
+                                                const BoundaryGhosts& gh = {}) {
   const Real h = prm.kernel.h;
   const Real eta2 = Real(0.01) * h * h;
   const Real r2max = prm.kernel.support() * prm.kernel.support();
@@ -53,6 +59,9 @@ struct Rates {
   const Real c0 = prm.eos.c0;
   Real drho = 0, diff = 0, vsig = 0;
   Vec3 acc{};
+  WallPlane face;
+  Real face_d = Real(1e30);
+  const auto wall = static_cast<std::uint8_t>(Kind::Wall);
   // One pair term; boundary particles (fluid_i false) only ever see fluid j.
   auto pair = [&](int j, const Vec3& rij, Real r2) {
     if (j == i) return;
@@ -68,6 +77,14 @@ struct Rates {
     const Real mu = h * vr * inv_r2e;
     const Real amu = mu < 0 ? -mu : mu;
     vsig = amu > vsig ? amu : vsig;
+    if (fluid_i && gh.on && p.kind[j] == wall) {
+      WallPlane w;
+      Real d;
+      if (face_below(p.pos[j], gh.offset[p.id[j] - gh.first_id], rij, prm.dp, w, d) && d < face_d) {
+        face = w;
+        face_d = d;
+      }
+    }
     if (fluid_i && fluid_j) {
       // rho^H_ji from the EOS's inverse at the hydrostatic pressure difference rho0 g.r_ji.
       const Real rho_h = prm.fourtakas ? prm.eos.density(-prm.eos.rho0 * dot(prm.gravity, rij)) - prm.eos.rho0 : 0;
@@ -85,6 +102,7 @@ struct Rates {
   out.drho = drho + prm.delta * h * c0 * diff;
   out.acc = fluid_i ? acc + prm.gravity : acc;
   out.vsig = vsig;
+  out.wall = face;
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 namespace surge::sph {
 
@@ -64,6 +65,20 @@ InitialState build_initial_state(const Case& c) {
   return s;
 }
 
+std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init) {
+  Vec3 lo{}, hi = Vec3(c.domain.max - c.domain.min);
+  const auto half = static_cast<Real>(c.dp / 2);
+  for (std::size_t i = 0; i < init.particles.size(); ++i) {
+    if (init.particles.kind[i] != static_cast<std::uint8_t>(Kind::Wall)) continue;
+    const Vec3 p = init.particles.pos[i];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::fmin(lo[k], p[k] - half);
+      hi[k] = std::fmax(hi[k], p[k] + half);
+    }
+  }
+  return {lo, hi};
+}
+
 namespace detail {
 // The loops of one SPH step, as free functions: nvcc's extended lambdas may not
 // live in private member functions.
@@ -82,16 +97,19 @@ void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const 
       });
 }
 
-// EOS then per-particle rates (continuity, momentum, signal speed).
-void compute_rates(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
+// EOS then per-particle rates (continuity, momentum, signal speed); with mDBC (`faces`
+// not null) each particle's nearest wall face below it.
+void compute_rates(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
+                   const particles::ParticleView& p, WallPlane* faces) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
   par::parallel_for_uneven(
       p.n, SURGE_LAMBDA(int i) {
-        const Rates r = wcsph_rates(prm, g, p, i);
+        const Rates r = wcsph_rates(prm, g, p, i, gh);
         p.acc[i] = r.acc;
         p.drho[i] = r.drho;
         p.vsig[i] = r.vsig;
+        if (faces) faces[i] = r.wall;
       });
 }
 
@@ -140,8 +158,10 @@ long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real
 }
 
 // Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
-// an Euler step when `euler`. Boundary densities are clamped at rho0.
-void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler) {
+// an Euler step when `euler`. Boundary densities are clamped at rho0. With `faces` (mDBC)
+// fluid is kept `dmin` in front of its nearest wall face (no_penetration.hpp).
+void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const WallPlane* faces,
+                   Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
@@ -151,9 +171,13 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
         if (p.kind[i] == fluid) {
           const Vec3 v_now = p.vel[i];
           const Vec3 a = p.acc[i];
-          p.pos[i] += v_now * dt + a * (dt * dt / 2);
-          p.vel[i] = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
-          p.vel_prev[i] = v_now;
+          Vec3 x = p.pos[i] + (v_now * dt + a * (dt * dt / 2)); // the association of the plain update
+          Vec3 v = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
+          Vec3 v_prev = v_now;
+          if (faces) keep_off_face(faces[i], dmin, x, v, &v_prev);
+          p.pos[i] = x;
+          p.vel[i] = v;
+          p.vel_prev[i] = v_prev;
         } else {
           rho_new = boundary_density(rho_new, rho0);
         }
@@ -163,7 +187,7 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
 }
 
 // Symplectic position-Verlet, first half: state n saved in *_prev, advanced by dt/2.
-void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
+void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, const WallPlane* faces, Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -173,8 +197,11 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
         if (p.kind[i] == fluid) {
           p.pos_prev[i] = p.pos[i];
           p.vel_prev[i] = p.vel[i];
-          p.pos[i] += p.vel[i] * half;
-          p.vel[i] += p.acc[i] * half;
+          Vec3 x = p.pos[i] + p.vel[i] * half;
+          Vec3 v = p.vel[i] + p.acc[i] * half;
+          if (faces) keep_off_face(faces[i], dmin, x, v);
+          p.pos[i] = x;
+          p.vel[i] = v;
         } else {
           rho = boundary_density(rho, rho0);
         }
@@ -183,7 +210,7 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0) {
 }
 
 // Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2.
-void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
+void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, const WallPlane* faces, Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -191,9 +218,11 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0) {
         Real rho = p.rho_prev[i] + dt * p.drho[i];
         if (p.kind[i] == fluid) {
           const Vec3 v0 = p.vel_prev[i];
-          const Vec3 v1 = v0 + p.acc[i] * dt;
+          Vec3 v1 = v0 + p.acc[i] * dt;
+          Vec3 x = p.pos_prev[i] + (v0 + v1) * half;
+          if (faces) keep_off_face(faces[i], dmin, x, v1);
           p.vel[i] = v1;
-          p.pos[i] = p.pos_prev[i] + (v0 + v1) * half;
+          p.pos[i] = x;
         } else {
           rho = boundary_density(rho, rho0);
         }
@@ -238,14 +267,14 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particle
   prm_.kernel = WendlandC2(static_cast<Real>(h));
   prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
   prm_.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
+  prm_.dp = static_cast<Real>(c.dp);
   prm_.alpha = static_cast<Real>(c.sph.alpha);
   prm_.delta = static_cast<Real>(c.sph.delta);
   prm_.gravity = Vec3(c.gravity);
   prm_.fourtakas = c.sph.diffusion == "fourtakas";
   symplectic_ = c.sph.integrator == "symplectic";
-  dom_lo_ = Vec3{};
-  dom_hi_ = Vec3(c.domain.max - c.domain.min);
-  // The grid covers the domain and every wall particle.
+  std::tie(dom_lo_, dom_hi_) = fluid_region(c, init);
+  // The grid covers that region and every particle.
   Vec3 lo = dom_lo_, hi = dom_hi_;
   for (const auto& p : init.particles.pos)
     for (int k = 0; k < 3; ++k) {
@@ -300,9 +329,10 @@ void WcsphSolver::rates() {
   if (ghosts_.on) {
     const auto t = par::timed(par::Phase::Boundary);
     detail::boundary_densities(prm_, ghosts_, g, p);
+    faces_.resize(static_cast<std::size_t>(p.n));
   }
   const auto t = par::timed(par::Phase::Rates);
-  detail::compute_rates(prm_, g, p);
+  detail::compute_rates(prm_, ghosts_, g, p, ghosts_.on ? faces_.data() : nullptr);
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
@@ -350,17 +380,19 @@ StepStats WcsphSolver::step(double dt_max) {
   const Real rho0 = prm_.eos.rho0;
   if (symplectic_) store_.reserve_position_scratch();
   const auto p = store_.view();
+  const WallPlane* faces = ghosts_.on ? faces_.data() : nullptr;
+  const Real dmin = prm_.dp / 4;
   if (!symplectic_) {
     const auto t = par::timed(par::Phase::Integrate);
-    detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0);
+    detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0, faces, dmin);
   } else {
     {
       const auto t = par::timed(par::Phase::Integrate);
-      detail::symplectic_predict(p, dt, rho0);
+      detail::symplectic_predict(p, dt, rho0, faces, dmin);
     }
     rates();
     const auto t = par::timed(par::Phase::Integrate);
-    detail::symplectic_correct(p, dt, rho0);
+    detail::symplectic_correct(p, dt, rho0, faces, dmin);
   }
   ++steps_;
   fresh_ = false;

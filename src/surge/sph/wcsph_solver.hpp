@@ -37,6 +37,11 @@ struct InitialState {
 // Builds fluid and wall particles from the case (meshes are read here).
 InitialState build_initial_state(const Case& c);
 
+// Where fluid may be (local coordinates): the case's domain, grown to hold every wall
+// particle's cell. Fluid beyond it is removed as having left the domain; fluid that went
+// into a wall's layers stays and is counted as a leak (sim::WallLeaks), not deleted.
+[[nodiscard]] std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init);
+
 struct StepStats {
   double dt = 0;
   int removed_domain = 0;          // left the domain this step
@@ -81,7 +86,7 @@ public:
   [[nodiscard]] std::uint32_t first_boundary_id() const { return ghosts_.first_id; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
-  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes() + ghost_.bytes(); }
+  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes() + ghost_.bytes() + faces_.bytes(); }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
   void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
@@ -102,6 +107,7 @@ private:
   WcsphParams prm_;
   BoundaryGhosts ghosts_; // on with sph.boundary: mdbc
   par::Buffer<Vec3> ghost_;
+  par::Buffer<WallPlane> faces_; // mdbc: each particle's nearest wall face, from the last rates (16 B)
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{};

@@ -1,0 +1,67 @@
+// No penetration through walls with mDBC (a kinematic safety net, after DualSPHysics's
+// mDBC "no penetration" variant, in surge's own geometric form).
+//
+// With mDBC the water sits half a spacing from each wall face, and a wall particle's
+// pressure is the fluid's at its ghost node. Where the fluid there is a thin sheet with a
+// slightly negative pressure (a jet running up a wall, a film sliding along it), nothing
+// repels it and its pairs with the wall particles pull it through the face; in impacts a
+// particle can also be driven through. Each wall particle knows the face it mirrors
+// through (its ghost offset o: the face lies at x_b + o/2 with normal o/|o|), so every
+// fluid particle finds the nearest face beneath it among its wall neighbours and, in the
+// update, is kept at least a quarter spacing in front of it: the part of its motion that
+// would take it closer is removed (an inelastic normal impact on the wall; the tangential
+// motion is kept). Water at its natural distance (dp/2) never feels it.
+#pragma once
+#include "surge/core/types.hpp"
+
+namespace surge::sph {
+
+// Where a kernel finds each boundary particle's ghost node: x_g = x_b + offset[id - first_id].
+struct BoundaryGhosts {
+  bool on = false;
+  std::uint32_t first_id = 0;
+  const Vec3* offset = nullptr;
+};
+
+// A wall face near a fluid particle: the plane n.x = c, n pointing into the water. The
+// default (n = 0) is no face: every point is far in front of it.
+struct WallPlane {
+  Vec3 n{};
+  Real c = Real(-1e30);
+  [[nodiscard]] SURGE_HD Real distance(const Vec3& x) const { return dot(n, x) - c; }
+};
+
+// The face that wall particle b (ghost offset o) mirrors through, seen from the fluid
+// particle at x_b + r (r = x_i - x_b): a candidate only if the point of the face below
+// x_i lies within 0.75 dp of b's own patch of the face (dp x dp), so that the planes of
+// neighbouring faces (a box's top seen from beside it) are not taken for this one.
+SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Real dp, WallPlane& out, Real& dist) {
+  const Real len2 = dot(o, o);
+  if (!(len2 > 0)) return false;
+  const Vec3 n = o * (1 / std::sqrt(len2));
+  const Vec3 rs = r - o * Real(0.5); // x_i - (face point of b)
+  const Real d = dot(rs, n);
+  const Real lateral2 = dot(rs, rs) - d * d;
+  if (lateral2 > Real(0.5625) * dp * dp) return false; // (0.75 dp)^2
+  out = WallPlane{n, dot(n, xb + o * Real(0.5))};
+  dist = d;
+  return true;
+}
+
+// Keeps the particle at x (moving at v) at least dmin in front of face w: moves it back
+// to dmin and removes the normal velocity towards the face (also from v_prev, the
+// leap-frog's other velocity, when given). Returns true if it acted.
+SURGE_HD inline bool keep_off_face(const WallPlane& w, Real dmin, Vec3& x, Vec3& v, Vec3* v_prev = nullptr) {
+  const Real d = w.distance(x);
+  if (!(d < dmin)) return false;
+  x += w.n * (dmin - d);
+  const Real vn = dot(v, w.n);
+  if (vn < 0) v -= w.n * vn;
+  if (v_prev) {
+    const Real pn = dot(*v_prev, w.n);
+    if (pn < 0) *v_prev -= w.n * pn;
+  }
+  return true;
+}
+
+} // namespace surge::sph
