@@ -48,7 +48,8 @@ print("| gauge | NRMS (RMS / measured range) | arrival exp [s] | arrival sim [s]
 print("|---|---|---|---|---|---|---|")
 fig, axes = plt.subplots(4, 3, figsize=(15, 12))
 order = ["H1", "H2", "H3", "H4", "P1", "P2", "P3", "P4", "P5", "P6", "P7", "P8"]
-rows = [(n, n) for n in order[:4]] + [(n + "h", n) for n in order[:4] if n + "h" in names] + [(n, n) for n in order[4:]]
+hi = "h" if "H1h" in names else "hi"  # the highest-point readings: H1h.. or H1hi..
+rows = [(n, n) for n in order[:4]] + [(n + hi, n) for n in order[:4] if n + hi in names] + [(n, n) for n in order[4:]]
 axes_of = {n: ax for n, ax in zip(order, axes.flat)}
 for col, name in rows:
     ax = axes_of[name]

@@ -2,6 +2,7 @@
 Archimedes on a fixed submerged sphere and a floating sphere (coarse end, D/6), a
 neutrally buoyant sphere (D/12, small tank), bitwise restart of a coupled run, the
 paper's resolution warnings in `surge check`, and clean rejection of a bad sphere gauge."""
+import json
 import math
 import os
 import shutil
@@ -66,6 +67,15 @@ if r.returncode == 0:
     print("     mdbc: Fz = %.4f N, rho g V = %.4f N, ratio %.4f" % (fz, RHO_G_V, fz / RHO_G_V))
     check(abs(fz / RHO_G_V - 1) < 0.05, "mdbc buoyancy within 5 % of rho g V at D/6")
     check(abs(fx) < 0.03 * RHO_G_V, "mdbc: no net horizontal force (|Fx| = %.4f N)" % abs(fx))
+
+# --- walls hold water in both Archimedes runs: nothing left the domain, nothing was found
+# inside the tank's walls at any output (the sphere is a body, not a wall: not counted).
+for name in ["arch6", "arch6_mdbc"]:
+    sp = os.path.join(WORK, name, "summary.json")
+    if os.path.exists(sp):
+        s = json.load(open(sp))
+        check(s["removed"]["left_domain"] == 0 and s["in_walls"]["max_at_an_output"] == 0,
+              "%s: no water through the walls (removed %s, in walls %s)" % (name, s["removed"], s["in_walls"]))
 
 # --- a floating sphere (cases/floating.yaml, density 500) at D/6: it must float with its
 # displaced volume (geometric, from its draught) between the values for an effective
