@@ -34,6 +34,11 @@ std::string lines(int n, double x0, double dx, const std::string& extra = "") {
   return s + "]\n";
 }
 
+// The start of a case in the 0.3 x 0.1 x 0.3 m tank at dp = 0.01 with h = h_over_dp dp.
+std::string head(const std::string& h_over_dp) {
+  return "name: g\ndp: 0.01\nsph: {h_over_dp: " + h_over_dp + "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
+}
+
 const std::string tank = "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: [zmax]}";
 
 } // namespace
@@ -60,15 +65,10 @@ TEST(Gauges, ColumnReadingIgnoresSprayAboveAnAirGap) {
 TEST(Gauges, DryBedUnderASheetReadsTheBed) {
   const double dp = 0.01;
   for (const char* h : {"1.0", "1.2", "1.5"}) {
-    const auto v = read_gauges("name: sheet\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) +
-                               "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
-                               "fluid: [{box: {min: [0,0,0.15], max: [0.3,0.1,0.17]}}]\n" +
-                               tank + "]\n" + lines(9, 0.1, 0.00123));
+    const std::string sheet = "fluid: [{box: {min: [0,0,0.15], max: [0.3,0.1,0.17]}}]\n" + tank + "]\n";
+    const auto v = read_gauges(head(h) + sheet + lines(9, 0.1, 0.00123));
     for (std::size_t k = 0; k < v.size(); ++k) EXPECT_NEAR(v[k], 0.0, dp / 2) << "h/dp " << h << ", line " << k;
-    const auto top = read_gauges("name: sheet\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) +
-                                 "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n"
-                                 "fluid: [{box: {min: [0,0,0.15], max: [0.3,0.1,0.17]}}]\n" +
-                                 tank + "]\n" + lines(3, 0.1, 0.00123, ", surface: highest"));
+    const auto top = read_gauges(head(h) + sheet + lines(3, 0.1, 0.00123, ", surface: highest"));
     for (double t : top) EXPECT_NEAR(t, 0.17, dp / 2) << "h/dp " << h;
   }
 }
@@ -80,14 +80,14 @@ TEST(Gauges, SlopingMeshBedReadsTheSlopeOrTheWaterOnIt) {
   const double dp = 0.01;
   const std::string slope = test::write_slope(0.02, 0.25);
   const std::string walls = tank + ", {name: slope, mesh: " + slope + ", solid: true}]\n";
-  const std::string head = "name: slope\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
+  const std::string start = head("1.2");
   const int n = 13;
   const double x0 = 0.04, dx = 0.0173;
   const auto dry =
-      read_gauges(head + "fluid: [{box: {min: [0,0,0.2], max: [0.3,0.1,0.22]}}]\n" + walls + lines(n, x0, dx));
+      read_gauges(start + "fluid: [{box: {min: [0,0,0.2], max: [0.3,0.1,0.22]}}]\n" + walls + lines(n, x0, dx));
   for (int k = 0; k < n; ++k) EXPECT_NEAR(dry[k], 0.02 + 0.25 * (x0 + k * dx), dp / 2) << "line " << k;
   const auto wet =
-      read_gauges(head + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.12]}}]\n" + walls + lines(n, x0, dx));
+      read_gauges(start + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.12]}}]\n" + walls + lines(n, x0, dx));
   for (int k = 0; k < n; ++k) EXPECT_NEAR(wet[k], 0.12, dp / 2) << "line " << k;
   std::filesystem::remove(slope);
 }
@@ -117,12 +117,10 @@ TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
   const double dp = 0.01;
   const std::string obstacle = tank + ", {name: box, box: {min: [0.1,0,0], max: [0.2,0.1,0.05]}, solid: true}]\n";
   for (const char* h : {"1.0", "1.2", "1.5"}) {
-    const std::string head =
-        "name: box\ndp: 0.01\nsph: {h_over_dp: " + std::string(h) + "}\ndomain: {min: [0,0,0], max: [0.3,0.1,0.3]}\n";
-    const auto deep =
-        read_gauges(head + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}]\n" + obstacle + lines(9, 0.12, 0.00713));
+    const auto deep = read_gauges(head(h) + "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}]\n" + obstacle +
+                                  lines(9, 0.12, 0.00713));
     for (double d : deep) EXPECT_NEAR(d, 0.10, dp / 2) << "h/dp " << h;
-    const auto dry = read_gauges(head +
+    const auto dry = read_gauges(head(h) +
                                  "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.03]}}, "
                                  "{box: {min: [0,0,0.2], max: [0.3,0.1,0.22]}}]\n" +
                                  obstacle + lines(9, 0.12, 0.00713));
