@@ -36,7 +36,8 @@ TEST(NoPenetration, KeepsAParticleAQuarterSpacingInFrontOfTheFace) {
 
 // The face below a fluid particle from a wall particle's ghost offset: a floor particle
 // dp/2 under the face gives the floor; a box's top seen from beside the box (the face
-// point 1 dp away sideways) is not taken.
+// point 1 dp away sideways) is not taken, nor is the bottom face of a box standing on
+// the floor, seen by the water beside it.
 TEST(NoPenetration, FaceBelowComesFromTheGhostOffsetOfTheWallParticleUnderneath) {
   const Real dp = Real(0.01);
   const Vec3 xb{0.1f, 0.1f, -0.5f * dp}, o{0, 0, dp}; // floor z = 0
@@ -46,6 +47,11 @@ TEST(NoPenetration, FaceBelowComesFromTheGhostOffsetOfTheWallParticleUnderneath)
   EXPECT_NEAR(d, 0.3f * dp, 1e-7);
   EXPECT_NEAR(w.distance(Vec3{0.5f, 0.5f, 0.02f}), 0.02f, 1e-7);
   EXPECT_FALSE(sph::face_below(xb, o, Vec3{1.0f * dp, 0, -0.5f * dp}, dp, w, d));
+  // A solid box standing on the floor: its bottom layer mirrors through its bottom face
+  // (normal down, z = 0). Water on the floor beside the box (z = dp/2, 0.2 dp in front of
+  // the box's side) is behind that face: it must not be held dp/4 below the floor.
+  const Vec3 xbox{0.5f, 0.1f, 0.5f * dp}, obox{0, 0, -dp};
+  EXPECT_FALSE(sph::face_below(xbox, obox, Vec3{0.7f * dp, 0, 0}, dp, w, d));
 }
 
 namespace {

@@ -32,15 +32,19 @@ struct WallPlane {
 };
 
 // The face that wall particle b (ghost offset o) mirrors through, seen from the fluid
-// particle at x_b + r (r = x_i - x_b): a candidate only if the point of the face below
-// x_i lies within 0.75 dp of b's own patch of the face (dp x dp), so that the planes of
-// neighbouring faces (a box's top seen from beside it) are not taken for this one.
+// particle at x_b + r (r = x_i - x_b): a candidate only if x_i is in front of it and the
+// point of the face below x_i lies within 0.75 dp of b's own patch of the face (dp x dp).
+// A face the particle is behind is not one it faces: a neighbouring face's plane (a box's
+// top seen from beside it) or a face that touches another wall (a solid box's bottom on
+// the tank's floor, whose plane would otherwise hold the water beside the box below the
+// floor).
 SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Real dp, WallPlane& out, Real& dist) {
   const Real len2 = dot(o, o);
   if (!(len2 > 0)) return false;
   const Vec3 n = o * (1 / std::sqrt(len2));
   const Vec3 rs = r - o * Real(0.5); // x_i - (face point of b)
   const Real d = dot(rs, n);
+  if (d < 0) return false;
   const Real lateral2 = dot(rs, rs) - d * d;
   if (lateral2 > Real(0.5625) * dp * dp) return false; // (0.75 dp)^2
   out = WallPlane{n, dot(n, xb + o * Real(0.5))};
