@@ -67,8 +67,22 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
   std::vector<Vec3d> pts;
   const Box& b = w.box;
   if (w.solid) {
+    // The lattice stretched per axis to fit the box exactly (as a tank's interior), so that
+    // every face lies half a spacing in front of its first layer: a box that is not a whole
+    // number of spacings otherwise kept its far faces up to 1.5 dp in front of the wall
+    // particles, a strip water could enter before any wall particle stopped it.
     const double band = layers * dp;
-    for (const auto& p : fill_box(b, dp)) {
+    std::vector<Vec3d> lattice_pts;
+    std::vector<double> axes[3];
+    for (int k = 0; k < 3; ++k) {
+      const long n = std::max(1L, std::lround((b.max[k] - b.min[k]) / dp));
+      const double step = (b.max[k] - b.min[k]) / static_cast<double>(n);
+      for (long i = 0; i < n; ++i) axes[k].push_back(b.min[k] + (static_cast<double>(i) + 0.5) * step);
+    }
+    for (double z : axes[2])
+      for (double y : axes[1])
+        for (double x : axes[0]) lattice_pts.push_back({x, y, z});
+    for (const auto& p : lattice_pts) {
       const double d =
           std::min({p.x - b.min.x, b.max.x - p.x, p.y - b.min.y, b.max.y - p.y, p.z - b.min.z, b.max.z - p.z});
       if (d < band) pts.push_back(p);

@@ -7,8 +7,10 @@
 // repels it and its pairs with the wall particles pull it through the face; in impacts a
 // particle can also be driven through. Each wall particle knows the face it mirrors
 // through (its ghost offset o: the face lies at x_b + o/2 with normal o/|o|), so every
-// fluid particle finds the nearest face beneath it among its wall neighbours and, in the
-// update, is kept at least a quarter spacing in front of it: the part of its motion that
+// fluid particle finds, among its wall neighbours' faces, the one it would reach first at
+// its present velocity (the nearest if it approaches none) and, in the update, is kept at
+// least a quarter spacing in front of it (one face per step suffices: a step moves water
+// far less than dp/4, so the face it approaches next is the one taken next step): the part of its motion that
 // would take it closer is removed (an inelastic normal impact on the wall; the tangential
 // motion is kept). Water at its natural distance (dp/2) never feels it.
 #pragma once
@@ -51,6 +53,40 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
   dist = d;
   return true;
 }
+
+// How far in front of a wall face fluid is kept, and how far from the centre of any wall
+// particle (the same distance along a face's normal above a wall particle dp/2 behind it).
+[[nodiscard]] SURGE_HD inline Real keep_off_distance(Real dp) { return dp / 4; }
+[[nodiscard]] SURGE_HD inline Real keep_off_radius(Real dp) { return Real(0.75) * dp; }
+
+// The sphere of radius keep_off_radius around a wall particle, as the plane tangent to it
+// facing the fluid particle (r = x_i - x_b, |r| = dist): keeping the fluid particle dmin
+// in front of that plane keeps it outside the sphere. Faces alone leave holes where a wall
+// particle mirrors through another face (near the edges of a solid box whose size is not
+// a whole number of spacings, the first 1.5 dp of a face have no particle of their own):
+// the spheres cover every wall particle, the faces keep water a quarter spacing off flat
+// walls between the particles.
+[[nodiscard]] SURGE_HD inline WallPlane sphere_plane(const Vec3& xb, const Vec3& r, Real dist, Real dp) {
+  const Vec3 n = r * (1 / dist);
+  return WallPlane{n, dot(n, xb) + keep_off_radius(dp) - keep_off_distance(dp)};
+}
+
+// Of the planes seen so far, the one the particle at x moving at v would reach first
+// (its distance dmin); with none approached, the nearest.
+struct FirstContact {
+  WallPlane plane;
+  Real key = Real(1e30), dist = Real(1e30);
+  SURGE_HD void consider(const WallPlane& w, const Vec3& x, const Vec3& v, Real dmin) {
+    const Real d = w.distance(x) - dmin;
+    const Real vn = dot(v, w.n);
+    const Real k = vn < 0 ? (d > 0 ? d : Real(0)) / -vn : Real(1e30);
+    if (k < key || (k == key && d < dist)) {
+      plane = w;
+      key = k;
+      dist = d;
+    }
+  }
+};
 
 // Keeps the particle at x (moving at v) at least dmin in front of face w: moves it back
 // to dmin and removes the normal velocity towards the face (also from v_prev, the

@@ -40,7 +40,7 @@ struct Rates {
   Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;
   Real vsig = 0;
-  WallPlane wall; // fluid with mDBC: the nearest wall face below it (no_penetration.hpp)
+  WallPlane wall; // fluid with mDBC: the wall face or particle it would reach first (no_penetration.hpp)
 };
 
 // `gh`: with mDBC, the wall particles' ghost offsets, from which each fluid particle finds
@@ -59,8 +59,8 @@ struct Rates {
   const Real c0 = prm.eos.c0;
   Real drho = 0, diff = 0, vsig = 0;
   Vec3 acc{};
-  WallPlane face;
-  Real face_d = Real(1e30);
+  FirstContact contact; // mDBC: the wall face or wall particle this fluid particle would reach first
+  const Real keep_off = keep_off_distance(prm.dp);
   const auto wall = static_cast<std::uint8_t>(Kind::Wall);
   // One pair term; boundary particles (fluid_i false) only ever see fluid j.
   auto pair = [&](int j, const Vec3& rij, Real r2) {
@@ -80,10 +80,9 @@ struct Rates {
     if (fluid_i && gh.on && p.kind[j] == wall) {
       WallPlane w;
       Real d;
-      if (face_below(p.pos[j], gh.offset[p.id[j] - gh.first_id], rij, prm.dp, w, d) && d < face_d) {
-        face = w;
-        face_d = d;
-      }
+      if (face_below(p.pos[j], gh.offset[p.id[j] - gh.first_id], rij, prm.dp, w, d))
+        contact.consider(w, xi, vi, keep_off);
+      if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, prm.dp), xi, vi, keep_off);
     }
     if (fluid_i && fluid_j) {
       // rho^H_ji from the EOS's inverse at the hydrostatic pressure difference rho0 g.r_ji.
@@ -102,7 +101,7 @@ struct Rates {
   out.drho = drho + prm.delta * h * c0 * diff;
   out.acc = fluid_i ? acc + prm.gravity : acc;
   out.vsig = vsig;
-  out.wall = face;
+  out.wall = contact.plane;
   return out;
 }
 

@@ -381,7 +381,7 @@ StepStats WcsphSolver::step(double dt_max) {
   if (symplectic_) store_.reserve_position_scratch();
   const auto p = store_.view();
   const WallPlane* faces = ghosts_.on ? faces_.data() : nullptr;
-  const Real dmin = prm_.dp / 4;
+  const Real dmin = keep_off_distance(prm_.dp);
   if (!symplectic_) {
     const auto t = par::timed(par::Phase::Integrate);
     detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0, faces, dmin);
