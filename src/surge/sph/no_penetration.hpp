@@ -71,19 +71,23 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
   return WallPlane{n, dot(n, xb) + keep_off_radius(dp) - keep_off_distance(dp)};
 }
 
-// Of the planes seen so far, the one the particle at x moving at v would reach first
-// (its distance dmin); with none approached, the nearest.
+// Of the planes seen so far, the one to hold the particle at x (moving at v) off in this
+// step, dmin in front: the most violated one if any is (it was pushed past one last step
+// while another was held), else the one it would reach first at its velocity, else the
+// nearest.
 struct FirstContact {
   WallPlane plane;
-  Real key = Real(1e30), dist = Real(1e30);
+  int tier = 3;
+  Real key = Real(1e30);
   SURGE_HD void consider(const WallPlane& w, const Vec3& x, const Vec3& v, Real dmin) {
     const Real d = w.distance(x) - dmin;
     const Real vn = dot(v, w.n);
-    const Real k = vn < 0 ? (d > 0 ? d : Real(0)) / -vn : Real(1e30);
-    if (k < key || (k == key && d < dist)) {
+    const int t = d < 0 ? 0 : (vn < 0 ? 1 : 2);
+    const Real k = t == 0 ? d : (t == 1 ? d / -vn : d);
+    if (t < tier || (t == tier && k < key)) {
       plane = w;
+      tier = t;
       key = k;
-      dist = d;
     }
   }
 };

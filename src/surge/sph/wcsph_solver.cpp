@@ -195,10 +195,14 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
         p.rho_prev[i] = p.rho[i];
         Real rho = p.rho[i] + half * p.drho[i];
         if (p.kind[i] == fluid) {
-          p.pos_prev[i] = p.pos[i];
-          p.vel_prev[i] = p.vel[i];
-          Vec3 x = p.pos[i] + p.vel[i] * half;
-          Vec3 v = p.vel[i] + p.acc[i] * half;
+          // A state the last corrector left past the plane is put back first: the corrector
+          // starts from it again.
+          Vec3 x0 = p.pos[i], v0 = p.vel[i];
+          if (faces) keep_off_face(faces[i], dmin, x0, v0);
+          p.pos_prev[i] = x0;
+          p.vel_prev[i] = v0;
+          Vec3 x = x0 + v0 * half;
+          Vec3 v = v0 + p.acc[i] * half;
           if (faces) keep_off_face(faces[i], dmin, x, v);
           p.pos[i] = x;
           p.vel[i] = v;
