@@ -3,13 +3,15 @@
 # tests (every unit test and the end-to-end CLI test; a few minutes on 2 cores). The long
 # validation tests (dam-break front against Koshizuka & Oka, the coupled cases) carry the
 # ctest label "validation": `ctest --preset cpu-ci -L validation`, or scripts/test.sh --all.
+# Tests labelled "open" are acceptance tests of open issues that do not pass yet
+# (tests/CMakeLists.txt says why): `ctest --preset cpu-ci -L open`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 cmake --preset cpu-ci
 cmake --build --preset cpu-ci -j"$(nproc)"
 if [ "${1:-}" = "--all" ]; then
-  ctest --preset cpu-ci -j1
+  ctest --preset cpu-ci -j1 -LE open
 else
-  ctest --preset cpu-ci -j1 -LE validation
+  ctest --preset cpu-ci -j1 -LE "validation|open"
 fi
