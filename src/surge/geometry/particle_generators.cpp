@@ -25,6 +25,15 @@ std::vector<double> lattice_centred(double lo, double hi, double dp) {
   for (double& x : v) x += shift;
   return v;
 }
+// n = round((hi - lo) / dp) coordinates (i + 1/2) s from lo, the spacing s stretched so
+// that they fill [lo, hi] exactly: the first and last lie s/2 from the ends.
+std::vector<double> lattice_stretched(double lo, double hi, double dp) {
+  const long n = std::max(1L, std::lround((hi - lo) / dp));
+  const double s = (hi - lo) / static_cast<double>(n);
+  std::vector<double> v;
+  for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * s);
+  return v;
+}
 bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.open.end(), f) != w.open.end(); }
 
 // Signed distance to the closest triangle, positive on the side the normals point to;
@@ -72,21 +81,14 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
     // number of spacings otherwise kept its far faces up to 1.5 dp in front of the wall
     // particles, a strip water could enter before any wall particle stopped it.
     const double band = layers * dp;
-    std::vector<Vec3d> lattice_pts;
-    std::vector<double> axes[3];
-    for (int k = 0; k < 3; ++k) {
-      const long n = std::max(1L, std::lround((b.max[k] - b.min[k]) / dp));
-      const double step = (b.max[k] - b.min[k]) / static_cast<double>(n);
-      for (long i = 0; i < n; ++i) axes[k].push_back(b.min[k] + (static_cast<double>(i) + 0.5) * step);
-    }
-    for (double z : axes[2])
-      for (double y : axes[1])
-        for (double x : axes[0]) lattice_pts.push_back({x, y, z});
-    for (const auto& p : lattice_pts) {
-      const double d =
-          std::min({p.x - b.min.x, b.max.x - p.x, p.y - b.min.y, b.max.y - p.y, p.z - b.min.z, b.max.z - p.z});
-      if (d < band) pts.push_back(p);
-    }
+    const auto xs = lattice_stretched(b.min.x, b.max.x, dp), ys = lattice_stretched(b.min.y, b.max.y, dp),
+               zs = lattice_stretched(b.min.z, b.max.z, dp);
+    for (double z : zs)
+      for (double y : ys)
+        for (double x : xs) {
+          const double d = std::min({x - b.min.x, b.max.x - x, y - b.min.y, b.max.y - y, z - b.min.z, b.max.z - z});
+          if (d < band) pts.push_back({x, y, z});
+        }
     return pts;
   }
   // Per axis: layers below, the interior (spacing stretched to fit exactly), layers above.
@@ -98,9 +100,7 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
   auto axis = [&](double lo, double hi) {
     std::vector<C> v;
     for (int k = layers - 1; k >= 0; --k) v.push_back({lo - (k + 0.5) * dp, -1});
-    const long n = std::max(1L, std::lround((hi - lo) / dp));
-    const double s = (hi - lo) / static_cast<double>(n);
-    for (long i = 0; i < n; ++i) v.push_back({lo + (static_cast<double>(i) + 0.5) * s, 0});
+    for (double x : lattice_stretched(lo, hi, dp)) v.push_back({x, 0});
     for (int k = 0; k < layers; ++k) v.push_back({hi + (k + 0.5) * dp, 1});
     return v;
   };
@@ -119,14 +119,20 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
   return pts;
 }
 
-std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers) {
-  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+Box bounds(const Mesh& m) {
+  Box b{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
   for (const auto& t : m.tris)
     for (const Vec3d& v : {t.a, t.b, t.c})
       for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], v[k]);
-        hi[k] = std::max(hi[k], v[k]);
+        b.min[k] = std::min(b.min[k], v[k]);
+        b.max[k] = std::max(b.max[k], v[k]);
       }
+  return b;
+}
+
+std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers) {
+  const Box box = bounds(m);
+  const Vec3d lo = box.min, hi = box.max;
   const double band = layers * dp;
   long i0[3], i1[3];
   for (int k = 0; k < 3; ++k) {

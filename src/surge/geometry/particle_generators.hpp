@@ -26,6 +26,8 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
+// The mesh's axis-aligned bounding box.
+Box bounds(const Mesh& m);
 // True if p lies behind a face of wall w, within its `band` of wall layers (a tank's
 // walls, not the open air beyond an open face or above its walls; inside a solid box;
 // behind a mesh surface): where no water can be.

@@ -11,17 +11,7 @@ WallLeaks::WallLeaks(const Case& c) : walls_(c.walls) {
   band_ = geometry::wall_layers(c) * c.dp;
   for (const auto& w : walls_) {
     meshes_.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
-    Box r = w.box;
-    if (w.is_mesh) {
-      r.min = {1e300, 1e300, 1e300};
-      r.max = {-1e300, -1e300, -1e300};
-      for (const auto& t : meshes_.back()->tris)
-        for (const Vec3d& v : {t.a, t.b, t.c})
-          for (int k = 0; k < 3; ++k) {
-            r.min[k] = std::min(r.min[k], v[k]);
-            r.max[k] = std::max(r.max[k], v[k]);
-          }
-    }
+    Box r = w.is_mesh ? geometry::bounds(*meshes_.back()) : w.box;
     // A solid mesh has no water behind it at any depth: its reach extends down without bound.
     const double below = w.is_mesh && w.solid ? 1e300 : band_;
     for (int k = 0; k < 3; ++k) {
