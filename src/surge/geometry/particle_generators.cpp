@@ -27,9 +27,13 @@ std::vector<double> lattice_centred(double lo, double hi, double dp) {
 }
 // n = round((hi - lo) / dp) coordinates (i + 1/2) s from lo, the spacing s stretched so
 // that they fill [lo, hi] exactly: the first and last lie s/2 from the ends.
+long stretched_count(double lo, double hi, double dp) { return std::max(1L, std::lround((hi - lo) / dp)); }
+double stretched_spacing(double lo, double hi, double dp) {
+  return (hi - lo) / static_cast<double>(stretched_count(lo, hi, dp));
+}
 std::vector<double> lattice_stretched(double lo, double hi, double dp) {
-  const long n = std::max(1L, std::lround((hi - lo) / dp));
-  const double s = (hi - lo) / static_cast<double>(n);
+  const long n = stretched_count(lo, hi, dp);
+  const double s = stretched_spacing(lo, hi, dp);
   std::vector<double> v;
   for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * s);
   return v;
@@ -171,6 +175,26 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p) {
         }
   }
   return s * 2.0 - p;
+}
+
+Reach wall_reach(const WallSpec& w, const Vec3d& p, double dp) {
+  if (w.is_mesh) return {0.75 * dp, 0.75 * dp};
+  const Box& b = w.box;
+  double s = w.solid ? 0.0 : dp; // a tank's layers lie dp apart across its faces
+  int faces = 0;                 // a solid box's faces this particle lies in the first layer of
+  for (int k = 0; k < 3; ++k) {
+    const double sk = stretched_spacing(b.min[k], b.max[k], dp);
+    s = std::max(s, sk);
+    if (w.solid)
+      for (const double f : {b.min[k], b.max[k]})
+        if (std::fabs(p[k] - f) < 0.5 * sk * (1 + 1e-6)) ++faces;
+  }
+  // 0.75 s: the patches of a face's particles overlap (a point of the face is at most
+  // s/sqrt(2) from the nearest one). At a solid box's edge or corner the particle mirrors
+  // through one face only, and the strips of the other faces next to the edge have no
+  // patch of their own: its sphere must reach past the edge line between it and its
+  // neighbour along the edge (sqrt(3)/2 s from it).
+  return {0.75 * s, faces >= 2 ? 0.9 * s : 0.75 * s};
 }
 
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {

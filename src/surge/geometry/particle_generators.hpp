@@ -23,6 +23,13 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
 // The ghost node of a wall particle at p (modified dynamic boundary): p mirrored through
 // the closest point of the wall's surface, into the fluid side.
 Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
+// How far the wall particle at p holds water off under mDBC's no-penetration condition
+// (sph/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
+// its patch of face; `sphere`, the radius around it that water may not enter.
+struct Reach {
+  double patch, sphere;
+};
+Reach wall_reach(const WallSpec& w, const Vec3d& p, double dp);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);

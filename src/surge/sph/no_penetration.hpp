@@ -18,11 +18,19 @@
 
 namespace surge::sph {
 
-// Where a kernel finds each boundary particle's ghost node: x_g = x_b + offset[id - first_id].
+// How far one wall particle holds water off (geometry::wall_reach, from the wall lattice
+// around it): the half-width of its patch of face and the radius of its sphere.
+struct WallReach {
+  Real patch = 0, sphere = 0;
+};
+
+// Where a kernel finds each boundary particle's ghost node, x_g = x_b + offset[id - first_id],
+// and each wall particle's reach (reach[id - first_id]; wall ids come before body ids).
 struct BoundaryGhosts {
   bool on = false;
   std::uint32_t first_id = 0;
   const Vec3* offset = nullptr;
+  const WallReach* reach = nullptr;
 };
 
 // A wall face near a fluid particle: the plane n.x = c, n pointing into the water. The
@@ -35,12 +43,12 @@ struct WallPlane {
 
 // The face that wall particle b (ghost offset o) mirrors through, seen from the fluid
 // particle at x_b + r (r = x_i - x_b): a candidate only if x_i is in front of it and the
-// point of the face below x_i lies within 0.75 dp of b's own patch of the face (dp x dp).
+// point of the face below x_i lies within `patch` (0.75 spacings) of b's own point of it.
 // A face the particle is behind is not one it faces: a neighbouring face's plane (a box's
 // top seen from beside it) or a face that touches another wall (a solid box's bottom on
 // the tank's floor, whose plane would otherwise hold the water beside the box below the
 // floor).
-SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Real dp, WallPlane& out, Real& dist) {
+SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Real patch, WallPlane& out, Real& dist) {
   const Real len2 = dot(o, o);
   if (!(len2 > 0)) return false;
   const Vec3 n = o * (1 / std::sqrt(len2));
@@ -48,27 +56,26 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
   const Real d = dot(rs, n);
   if (d < 0) return false;
   const Real lateral2 = dot(rs, rs) - d * d;
-  if (lateral2 > Real(0.5625) * dp * dp) return false; // (0.75 dp)^2
+  if (lateral2 > patch * patch) return false;
   out = WallPlane{n, dot(n, xb + o * Real(0.5))};
   dist = d;
   return true;
 }
 
-// How far in front of a wall face fluid is kept, and how far from the centre of any wall
-// particle (the same distance along a face's normal above a wall particle dp/2 behind it).
+// How far in front of a wall face fluid is kept.
 [[nodiscard]] SURGE_HD inline Real keep_off_distance(Real dp) { return dp / 4; }
-[[nodiscard]] SURGE_HD inline Real keep_off_radius(Real dp) { return Real(0.75) * dp; }
 
-// The sphere of radius keep_off_radius around a wall particle, as the plane tangent to it
-// facing the fluid particle (r = x_i - x_b, |r| = dist): keeping the fluid particle dmin
-// in front of that plane keeps it outside the sphere. Faces alone leave holes where a wall
-// particle mirrors through another face (near the edges of a solid box whose size is not
-// a whole number of spacings, the first 1.5 dp of a face have no particle of their own):
-// the spheres cover every wall particle, the faces keep water a quarter spacing off flat
-// walls between the particles.
-[[nodiscard]] SURGE_HD inline WallPlane sphere_plane(const Vec3& xb, const Vec3& r, Real dist, Real dp) {
+// The sphere of radius `radius` around a wall particle, as the plane tangent to it facing
+// the fluid particle (r = x_i - x_b, |r| = dist), moved back by dmin: keeping the fluid
+// particle dmin in front of that plane keeps it outside the sphere. Faces alone leave
+// holes where a wall particle mirrors through another face (next to a solid box's edges
+// the strip of each face beside the edge has no particle of its own): the spheres cover
+// every wall particle (a face's at 0.75 spacings, dp/4 in front of the face above it; an
+// edge's or a corner's past the edge line), the faces keep water a quarter spacing off
+// flat walls between the particles.
+[[nodiscard]] SURGE_HD inline WallPlane sphere_plane(const Vec3& xb, const Vec3& r, Real dist, Real radius, Real dmin) {
   const Vec3 n = r * (1 / dist);
-  return WallPlane{n, dot(n, xb) + keep_off_radius(dp) - keep_off_distance(dp)};
+  return WallPlane{n, dot(n, xb) + radius - dmin};
 }
 
 // Of the planes seen so far, the one to hold the particle at x (moving at v) off in this

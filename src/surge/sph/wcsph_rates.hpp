@@ -80,9 +80,10 @@ struct Rates {
     if (fluid_i && gh.on && p.kind[j] == wall) {
       WallPlane w;
       Real d;
-      if (face_below(p.pos[j], gh.offset[p.id[j] - gh.first_id], rij, prm.dp, w, d))
-        contact.consider(w, xi, vi, keep_off);
-      if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, prm.dp), xi, vi, keep_off);
+      const std::uint32_t b = p.id[j] - gh.first_id;
+      const WallReach reach = gh.reach[b];
+      if (face_below(p.pos[j], gh.offset[b], rij, reach.patch, w, d)) contact.consider(w, xi, vi, keep_off);
+      if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
     }
     if (fluid_i && fluid_j) {
       // rho^H_ji from the EOS's inverse at the hydrostatic pressure difference rho0 g.r_ji.

@@ -53,6 +53,8 @@ InitialState build_initial_state(const Case& c) {
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
       s.boundary_ghost.push_back(Vec3(geometry::ghost_point(ws, meshes[w].get(), p) - p));
+      const auto reach = geometry::wall_reach(ws, p, c.dp);
+      s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere)});
     }
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();
@@ -288,9 +290,13 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particle
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(held ? *held : init.particles);
   ghosts_.on = c.sph.boundary == "mdbc";
-  if (ghosts_.on) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
+  if (ghosts_.on) {
+    par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
+    par::upload(reach_, init.wall_reach);
+  }
   ghosts_.first_id = init.first_boundary_id;
   ghosts_.offset = ghost_.data();
+  ghosts_.reach = reach_.data();
   for (const auto& g : init.boundary_ghost) ghost_reach_ = std::fmax(ghost_reach_, static_cast<double>(norm(g)));
 }
 

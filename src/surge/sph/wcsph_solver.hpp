@@ -27,6 +27,7 @@ struct InitialState {
   // ghost - position, indexed by id - first_boundary_id (fluid ids come first).
   std::uint32_t first_boundary_id = 0;
   std::vector<Vec3> boundary_ghost;
+  std::vector<WallReach> wall_reach; // per wall particle (id - first_boundary_id < n_wall)
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
@@ -86,7 +87,9 @@ public:
   [[nodiscard]] std::uint32_t first_boundary_id() const { return ghosts_.first_id; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
-  [[nodiscard]] std::size_t bytes() const { return store_.bytes() + grid_.bytes() + ghost_.bytes() + faces_.bytes(); }
+  [[nodiscard]] std::size_t bytes() const {
+    return store_.bytes() + grid_.bytes() + ghost_.bytes() + reach_.bytes() + faces_.bytes();
+  }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
   void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
@@ -107,6 +110,7 @@ private:
   WcsphParams prm_;
   BoundaryGhosts ghosts_; // on with sph.boundary: mdbc
   par::Buffer<Vec3> ghost_;
+  par::Buffer<WallReach> reach_; // mdbc: 8 B per wall particle
   par::Buffer<WallPlane> faces_; // mdbc: each particle's nearest wall face, from the last rates (16 B)
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
