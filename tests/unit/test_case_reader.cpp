@@ -2,11 +2,14 @@
 #include "test_helpers.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/io/case_schema.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 using namespace surge;
 
@@ -126,4 +129,56 @@ TEST(CaseReader, KeyGivenTwice) {
   expect_error(test::tank_case(0.01) + "dp: 0.02\n", 7, "dp", "given twice, on line 2 and on line 7");
   expect_error(test::tank_case(0.01) + "gauges:\n  - {name: a, type: height, x: 0.1, y: 0.05, x: 0.2}\n", 8,
                "gauges.0.x", "given twice");
+}
+
+// The schema (io/case_schema.cpp) is where each key's range and choices live: for every
+// key of the keyed sections, a value just outside its range (or a value not among its
+// choices) is rejected with the key's name and the range's message, and every key is in
+// the reference users read.
+namespace {
+std::string number(double v) {
+  std::ostringstream s;
+  s << v; // integers without a decimal point, for integer keys
+  return s.str();
+}
+// `prefix` as --set writes it ("dem.materials.0."), `doc_prefix` as the reference does.
+template <class S>
+void expect_schema_checks(const std::string& text, const std::string& prefix, const std::string& doc_prefix,
+                          const std::vector<io::Field<S>>& fields) {
+  for (const auto& f : fields) {
+    const std::string key = prefix + f.key;
+    std::vector<std::string> bad;
+    if (!f.choices.empty()) bad.push_back("nonsense");
+    if (std::isfinite(f.range.lo)) bad.push_back(number(f.range.lo_open ? f.range.lo : f.range.lo - 1));
+    if (std::isfinite(f.range.hi)) bad.push_back(number(f.range.hi_open ? f.range.hi : f.range.hi + 1));
+    for (const auto& v : bad)
+      expect_error(text, 0, key, f.choices.empty() ? f.range.message() : "must be " + f.choices[0], {key + "=" + v});
+    EXPECT_NE(io::case_reference_markdown().find("`" + doc_prefix + f.key + "`"), std::string::npos) << key;
+  }
+}
+} // namespace
+
+TEST(CaseSchema, EveryRangeAndChoiceIsCheckedWithTheKeyNamed) {
+  const std::string dem_case = test::tank_case(0.01) +
+                               "dem:\n  materials: [{name: rock}]\n"
+                               "  packs: [{box: {min: [0.05, 0.02, 0.2], max: [0.1, 0.06, 0.25]}, radius: 0.01, "
+                               "material: rock}]\n";
+  ASSERT_NO_THROW((void)io::read_case_text(dem_case, "bad.yaml"));
+  expect_schema_checks(test::tank_case(0.01), "time.", "time.", io::time_fields());
+  expect_schema_checks(test::tank_case(0.01), "sph.", "sph.", io::sph_fields());
+  expect_schema_checks(test::tank_case(0.01), "coupling.", "coupling.", io::coupling_fields());
+  expect_schema_checks(dem_case, "dem.", "dem.", io::dem_fields());
+  expect_schema_checks(dem_case, "dem.materials.0.", "dem.materials[].", io::material_fields());
+  // A value on the closed end of a range is allowed (dem.dt_factor = 0.5, sph.alpha = 0).
+  EXPECT_NO_THROW((void)io::read_case_text(dem_case, "ok.yaml", {"dem.dt_factor=0.5", "sph.alpha=0"}));
+}
+
+// The allowed-key lists of the reader come from the schema: an unknown key is rejected
+// with the closest declared one, in a list item as in a section.
+TEST(CaseSchema, AllowedKeysComeFromTheSchema) {
+  EXPECT_EQ(io::keys_under("coupling"), (std::vector<std::string>{"body_layers", "force_sum"}));
+  EXPECT_EQ(io::keys_under("fluid[]"), (std::vector<std::string>{"box", "velocity"}));
+  expect_error(test::tank_case(0.01) + "coupling: {force_summ: exact}\n", 7, "coupling.force_summ",
+               "did you mean 'force_sum'");
+  expect_error(test::tank_case(0.01), 0, "fluid.0.velocty", "did you mean 'velocity'", {"fluid.0.velocty=[1,0,0]"});
 }

@@ -3,6 +3,7 @@
 #include "surge/core/version.hpp"
 #include "surge/domain/comm.hpp"
 #include "surge/io/case_reader.hpp"
+#include "surge/io/case_schema.hpp"
 #include "surge/par/parallel.hpp"
 #include "surge/sim/simulation.hpp"
 
@@ -25,6 +26,7 @@ usage:
   surge run CASE [--out DIR] [--threads N] [--set KEY=VALUE]... [--quiet]
   surge restart DIR [--threads N] [--set KEY=VALUE]... [--quiet]
   surge check CASE [--set KEY=VALUE]...
+  surge keys [PREFIX | --markdown]
   surge --version
   surge --help
 
@@ -33,6 +35,9 @@ usage:
            output), with DIR/case.yaml; e.g. --set time.end=10 to run longer
   check    validates the case and prints particle counts, memory, first time
            step, estimated run time and resolution warnings
+  keys     lists the case file's keys (those starting with PREFIX, e.g. sph.) with
+           their type, default, unit, allowed values and meaning; --markdown
+           prints docs/case_reference.md
   --set    overrides any case-file value, e.g. --set dp=0.02 --set time.end=0.5
            (list elements by index: --set fluid.0.box.max=[0.1,0.2,0.3])
 
@@ -61,6 +66,14 @@ int surge_main(int argc, char** argv) {
     return 0;
   }
   const std::string cmd = args[0];
+  if (cmd == "keys") {
+    if (args.size() > 2) return fail_usage("keys takes at most one PREFIX or --markdown");
+    const std::string a = args.size() == 2 ? args[1] : "";
+    const std::string text = a == "--markdown" ? surge::io::case_reference_markdown() : surge::io::keys_text(a);
+    if (text.empty()) return fail_usage("no case key starts with '" + a + "'");
+    if (root) std::fputs(text.c_str(), stdout);
+    return 0;
+  }
   if (cmd != "run" && cmd != "check" && cmd != "restart") return fail_usage("unknown command '" + cmd + "'");
   const bool runs = cmd == "run" || cmd == "restart";
   std::string case_path, out_dir;

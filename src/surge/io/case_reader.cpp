@@ -1,6 +1,7 @@
 #include "surge/io/case_reader.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/io/case_schema.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -39,16 +40,16 @@ public:
   void note_override(const std::string& key) { set_keys_.push_back(key); }
 
   // Rejects keys not in `allowed` (typos), suggesting the closest allowed one.
-  void check_keys(const YAML::Node& map, const std::string& path, std::initializer_list<const char*> allowed) const {
+  void check_keys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed) const {
     if (!map.IsMap()) fail(map, path, "expected a mapping (key: value pairs)");
     for (const auto& kv : map) {
       const auto k = kv.first.as<std::string>();
       bool ok = false;
-      for (const char* a : allowed) ok = ok || k == a;
+      for (const auto& a : allowed) ok = ok || k == a;
       if (ok) continue;
       std::string best;
       std::size_t best_d = 3;
-      for (const char* a : allowed) {
+      for (const auto& a : allowed) {
         const std::size_t d = distance(k, a);
         if (d < best_d) {
           best_d = d;
@@ -60,7 +61,7 @@ public:
         msg += " (did you mean '" + best + "'?)";
       else {
         msg += "; allowed here:";
-        for (const char* a : allowed) msg += std::string(" ") + a;
+        for (const auto& a : allowed) msg += " " + a;
       }
       fail(kv.first, join(path, k), msg);
     }
@@ -174,6 +175,32 @@ void apply_override(YAML::Node& root, const std::string& assignment, Reader& r) 
   r.note_override(key);
 }
 
+// Reads the keys of one section declared in case_schema.cpp into s (absent keys keep
+// s's value) and checks each against its range or choices.
+template <class S>
+void read_fields(const Reader& r, const YAML::Node& n, const std::string& path, const std::vector<Field<S>>& fields,
+                 S& s) {
+  for (const auto& f : fields) {
+    const std::string key = Reader::join(path, f.key);
+    std::visit(
+        [&](auto m) {
+          auto& v = s.*m;
+          using V = std::decay_t<decltype(v)>;
+          v = r.get(n, path, f.key, v);
+          if constexpr (std::is_same_v<V, std::string>) {
+            if (f.choices.empty() || std::find(f.choices.begin(), f.choices.end(), v) != f.choices.end()) return;
+            std::string list;
+            for (std::size_t i = 0; i < f.choices.size(); ++i)
+              list += (i == 0 ? "" : (i + 1 == f.choices.size() ? " or " : ", ")) + f.choices[i];
+            r.fail(n[f.key], key, "must be " + list + " (" + f.help + ")");
+          } else if constexpr (!std::is_same_v<V, bool>) {
+            if (!f.range.holds(static_cast<double>(v))) r.fail(n[f.key], key, f.range.message());
+          }
+        },
+        f.member);
+  }
+}
+
 Face parse_face(const Reader& r, const YAML::Node& n, const std::string& key) {
   const auto s = r.as<std::string>(n, key);
   constexpr Face all[] = {Face::XMin, Face::XMax, Face::YMin, Face::YMax, Face::ZMin, Face::ZMax};
@@ -191,39 +218,22 @@ Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
 }
 
 void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
-  r.check_keys(d, "dem", {"dt_factor", "bond_gap", "local_damping", "materials", "packs", "walls"});
+  r.check_keys(d, "dem", keys_under("dem"));
   auto& dem = c.dem;
-  dem.dt_factor = r.get(d, "dem", "dt_factor", dem.dt_factor);
-  if (!(dem.dt_factor > 0 && dem.dt_factor <= 0.5)) r.fail(d["dt_factor"], "dem.dt_factor", "must lie in (0, 0.5]");
-  dem.bond_gap = r.get(d, "dem", "bond_gap", dem.bond_gap);
-  dem.local_damping = r.get(d, "dem", "local_damping", dem.local_damping);
-  if (!(dem.local_damping >= 0 && dem.local_damping < 1))
-    r.fail(d["local_damping"], "dem.local_damping", "must lie in [0, 1)");
-  if (dem.bond_gap < 0) r.fail(d["bond_gap"], "dem.bond_gap", "must not be negative");
+  read_fields(r, d, "dem", dem_fields(), dem);
   const YAML::Node mats = d["materials"];
   if (!mats.IsDefined() || !mats.IsSequence() || mats.size() == 0)
     r.fail(mats.IsDefined() ? mats : d, "dem.materials", "a list of at least one material is required");
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const std::string path = "dem.materials." + std::to_string(i);
     const YAML::Node m = mats[i];
-    r.check_keys(m, path, {"name", "density", "E", "nu", "phi", "restitution", "rolling", "twisting", "bond"});
+    r.check_keys(m, path, keys_under("dem.materials[]"));
     DemMaterialSpec ms;
     ms.line = m.Mark().line + 1;
     ms.name = r.require<std::string>(m, path, "name");
     for (const auto& other : dem.materials)
       if (other.name == ms.name) r.fail(m["name"], path + ".name", "duplicate material name");
-    ms.density = r.get(m, path, "density", ms.density);
-    ms.young = r.get(m, path, "E", ms.young);
-    ms.nu = r.get(m, path, "nu", ms.nu);
-    ms.phi_deg = r.get(m, path, "phi", ms.phi_deg);
-    ms.restitution = r.get(m, path, "restitution", ms.restitution);
-    if (!(ms.density > 0)) r.fail(m["density"], path + ".density", "must be positive");
-    if (!(ms.young > 0)) r.fail(m["E"], path + ".E", "must be positive");
-    if (!(ms.nu > 0)) r.fail(m["nu"], path + ".nu", "must be positive");
-    if (!(ms.phi_deg >= 0 && ms.phi_deg < 90))
-      r.fail(m["phi"], path + ".phi", "friction angle must lie in [0, 90) degrees");
-    if (!(ms.restitution > 0 && ms.restitution <= 1))
-      r.fail(m["restitution"], path + ".restitution", "must lie in (0, 1]");
+    read_fields(r, m, path, material_fields(), ms);
     auto pair = [&](const char* key, double& k, double& kmax) {
       if (!m[key].IsDefined()) return;
       const auto v = m[key];
@@ -263,7 +273,7 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     for (std::size_t i = 0; i < walls.size(); ++i) {
       const std::string path = "dem.walls." + std::to_string(i);
       const YAML::Node w = walls[i];
-      r.check_keys(w, path, {"name", "plane", "mesh", "material"});
+      r.check_keys(w, path, keys_under("dem.walls[]"));
       DemWallSpec ws;
       ws.name = r.get<std::string>(w, path, "name", "");
       ws.line = w.Mark().line + 1;
@@ -287,8 +297,7 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     for (std::size_t i = 0; i < packs.size(); ++i) {
       const std::string path = "dem.packs." + std::to_string(i);
       const YAML::Node pk = packs[i];
-      r.check_keys(pk, path,
-                   {"box", "mesh", "radius", "jitter", "random", "settle", "csv", "material", "velocity", "fixed"});
+      r.check_keys(pk, path, keys_under("dem.packs[]"));
       DemPackSpec ps;
       ps.line = pk.Mark().line + 1;
       ps.material = material(pk, path);
@@ -331,8 +340,7 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
 Case parse(const YAML::Node& root, Reader& r) {
   Case c;
   if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
-  r.check_keys(root, "",
-               {"name", "dp", "time", "gravity", "domain", "sph", "fluid", "walls", "gauges", "dem", "coupling"});
+  r.check_keys(root, "", keys_under(""));
   c.name = r.require<std::string>(root, "", "name");
   if (c.name.empty() || c.name.find_first_of("/\\") != std::string::npos)
     r.fail(root["name"], "name", "must be a non-empty name without slashes");
@@ -342,20 +350,8 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
 
   if (const auto t = root["time"]; t.IsDefined()) {
-    r.check_keys(t, "time", {"end", "output_every", "gauge_every", "dt_min", "max_steps", "checkpoint_every_wall"});
-    c.time.end = r.get(t, "time", "end", c.time.end);
-    c.time.output_every = r.get(t, "time", "output_every", c.time.output_every);
-    c.time.gauge_every = r.get(t, "time", "gauge_every", c.time.gauge_every);
-    c.time.dt_min = r.get(t, "time", "dt_min", c.time.dt_min);
-    c.time.max_steps = r.get(t, "time", "max_steps", c.time.max_steps);
-    c.time.checkpoint_every_wall = r.get(t, "time", "checkpoint_every_wall", c.time.checkpoint_every_wall);
-    if (c.time.checkpoint_every_wall < 0)
-      r.fail(t["checkpoint_every_wall"], "time.checkpoint_every_wall", "must not be negative (0: with outputs only)");
-    if (c.time.max_steps < 0) r.fail(t["max_steps"], "time.max_steps", "must not be negative");
-    if (!(c.time.end > 0)) r.fail(t["end"], "time.end", "must be positive");
-    if (!(c.time.output_every > 0)) r.fail(t["output_every"], "time.output_every", "must be positive");
-    if (c.time.gauge_every < 0) r.fail(t["gauge_every"], "time.gauge_every", "must not be negative");
-    if (c.time.dt_min < 0) r.fail(t["dt_min"], "time.dt_min", "must not be negative");
+    r.check_keys(t, "time", keys_under("time"));
+    read_fields(r, t, "time", time_fields(), c.time);
   }
   if (c.time.gauge_every == 0) c.time.gauge_every = c.time.output_every / 10;
   c.gravity = r.get(root, "", "gravity", c.gravity);
@@ -364,49 +360,8 @@ Case parse(const YAML::Node& root, Reader& r) {
   c.domain = parse_box(r, root["domain"], "domain");
 
   if (const auto s = root["sph"]; s.IsDefined()) {
-    r.check_keys(s, "sph",
-                 {"h_over_dp", "alpha", "delta", "eta", "cfl", "rho0", "hmax", "c0", "integrator", "diffusion",
-                  "boundary", "euler_every", "rho_min", "rho_max", "max_removed_share", "hydrostatic_init"});
-    auto& p = c.sph;
-    p.h_over_dp = r.get(s, "sph", "h_over_dp", p.h_over_dp);
-    p.alpha = r.get(s, "sph", "alpha", p.alpha);
-    p.delta = r.get(s, "sph", "delta", p.delta);
-    p.eta = r.get(s, "sph", "eta", p.eta);
-    p.cfl = r.get(s, "sph", "cfl", p.cfl);
-    p.rho0 = r.get(s, "sph", "rho0", p.rho0);
-    p.hmax = r.get(s, "sph", "hmax", p.hmax);
-    p.c0 = r.get(s, "sph", "c0", p.c0);
-    p.integrator = r.get(s, "sph", "integrator", p.integrator);
-    p.diffusion = r.get(s, "sph", "diffusion", p.diffusion);
-    p.boundary = r.get(s, "sph", "boundary", p.boundary);
-    p.euler_every = r.get(s, "sph", "euler_every", p.euler_every);
-    p.rho_min = r.get(s, "sph", "rho_min", p.rho_min);
-    p.rho_max = r.get(s, "sph", "rho_max", p.rho_max);
-    p.max_removed_share = r.get(s, "sph", "max_removed_share", p.max_removed_share);
-    p.hydrostatic_init = r.get(s, "sph", "hydrostatic_init", p.hydrostatic_init);
-    auto positive = [&](double v, const char* k) {
-      if (!(v > 0)) r.fail(s[k], std::string("sph.") + k, "must be positive");
-    };
-    positive(p.h_over_dp, "h_over_dp");
-    positive(p.eta, "eta");
-    positive(p.cfl, "cfl");
-    positive(p.rho0, "rho0");
-    if (p.alpha < 0) r.fail(s["alpha"], "sph.alpha", "must not be negative");
-    if (p.delta < 0) r.fail(s["delta"], "sph.delta", "must not be negative");
-    if (p.c0 < 0) r.fail(s["c0"], "sph.c0", "must not be negative");
-    if (p.hmax < 0) r.fail(s["hmax"], "sph.hmax", "must not be negative");
-    if (p.integrator != "verlet" && p.integrator != "symplectic")
-      r.fail(s["integrator"], "sph.integrator", "must be verlet or symplectic");
-    if (p.diffusion != "molteni" && p.diffusion != "fourtakas")
-      r.fail(s["diffusion"], "sph.diffusion", "must be molteni or fourtakas");
-    if (p.boundary != "dynamic" && p.boundary != "mdbc")
-      r.fail(s["boundary"], "sph.boundary",
-             "must be dynamic (the paper's) or mdbc (modified dynamic, without the gap)");
-    if (p.euler_every < 1) r.fail(s["euler_every"], "sph.euler_every", "must be at least 1");
-    if (!(p.rho_min > 0 && p.rho_min < 1)) r.fail(s["rho_min"], "sph.rho_min", "must lie in (0, 1)");
-    if (!(p.rho_max > 1)) r.fail(s["rho_max"], "sph.rho_max", "must exceed 1");
-    if (!(p.max_removed_share > 0 && p.max_removed_share <= 1))
-      r.fail(s["max_removed_share"], "sph.max_removed_share", "must lie in (0, 1]");
+    r.check_keys(s, "sph", keys_under("sph"));
+    read_fields(r, s, "sph", sph_fields(), c.sph);
   }
 
   const YAML::Node fluid = root["fluid"];
@@ -415,7 +370,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < fluid.size(); ++i) {
       const std::string path = "fluid." + std::to_string(i);
       const YAML::Node f = fluid[i];
-      r.check_keys(f, path, {"box", "velocity"});
+      r.check_keys(f, path, keys_under("fluid[]"));
       FluidRegion reg;
       if (!f["box"].IsDefined()) r.fail(f, path + ".box", "is required");
       reg.box = parse_box(r, f["box"], path + ".box");
@@ -439,7 +394,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < walls.size(); ++i) {
       const std::string path = "walls." + std::to_string(i);
       const YAML::Node w = walls[i];
-      r.check_keys(w, path, {"name", "box", "open", "solid", "mesh"});
+      r.check_keys(w, path, keys_under("walls[]"));
       WallSpec ws;
       ws.name = r.get<std::string>(w, path, "name", "wall" + std::to_string(i));
       ws.line = w.Mark().line + 1;
@@ -496,7 +451,7 @@ Case parse(const YAML::Node& root, Reader& r) {
     for (std::size_t i = 0; i < gauges.size(); ++i) {
       const std::string path = "gauges." + std::to_string(i);
       const YAML::Node g = gauges[i];
-      r.check_keys(g, path, {"name", "type", "x", "y", "at", "component", "wall", "sphere", "about", "surface"});
+      r.check_keys(g, path, keys_under("gauges[]"));
       GaugeSpec gs;
       gs.line = g.Mark().line + 1;
       gs.name = r.require<std::string>(g, path, "name");
@@ -590,13 +545,8 @@ Case parse(const YAML::Node& root, Reader& r) {
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
   if (const auto cp = root["coupling"]; cp.IsDefined()) {
-    r.check_keys(cp, "coupling", {"body_layers", "force_sum"});
-    c.coupling.body_layers = r.get(cp, "coupling", "body_layers", 0);
-    if (c.coupling.body_layers < 0) r.fail(cp["body_layers"], "coupling.body_layers", "must not be negative");
-    c.coupling.force_sum = r.get(cp, "coupling", "force_sum", c.coupling.force_sum);
-    if (c.coupling.force_sum != "exact" && c.coupling.force_sum != "per_sphere")
-      r.fail(cp["force_sum"], "coupling.force_sum",
-             "must be exact (bitwise the same on any number of processes) or per_sphere (less traffic)");
+    r.check_keys(cp, "coupling", keys_under("coupling"));
+    read_fields(r, cp, "coupling", coupling_fields(), c.coupling);
   }
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
@@ -659,6 +609,17 @@ Case read_case(const std::string& path, const Overrides& overrides) {
   return read_case_text(ss.str(), path, overrides);
 }
 
+namespace {
+// Writes the keys of one section declared in case_schema.cpp.
+template <class S>
+void write_fields(YAML::Emitter& e, const std::vector<Field<S>>& fields, const S& s) {
+  for (const auto& f : fields) {
+    e << YAML::Key << f.key << YAML::Value;
+    std::visit([&](auto m) { e << s.*m; }, f.member);
+  }
+}
+} // namespace
+
 std::string to_yaml(const Case& c) {
   YAML::Emitter e;
   e.SetDoublePrecision(12);
@@ -673,26 +634,17 @@ std::string to_yaml(const Case& c) {
   e << YAML::BeginMap;
   e << YAML::Key << "name" << YAML::Value << c.name;
   e << YAML::Key << "dp" << YAML::Value << c.dp;
-  e << YAML::Key << "time" << YAML::Value << YAML::BeginMap << YAML::Key << "end" << YAML::Value << c.time.end
-    << YAML::Key << "output_every" << YAML::Value << c.time.output_every << YAML::Key << "gauge_every" << YAML::Value
-    << c.time.gauge_every << YAML::Key << "dt_min" << YAML::Value << c.time.dt_min << YAML::Key << "max_steps"
-    << YAML::Value << c.time.max_steps << YAML::Key << "checkpoint_every_wall" << YAML::Value
-    << c.time.checkpoint_every_wall << YAML::EndMap;
+  e << YAML::Key << "time" << YAML::Value << YAML::BeginMap;
+  write_fields(e, time_fields(), c.time);
+  e << YAML::EndMap;
   e << YAML::Key << "gravity" << YAML::Value;
   vec(c.gravity);
   e << YAML::Key << "domain" << YAML::Value;
   box(c.domain);
-  const auto& s = c.sph;
+  SphConfig sph = c.sph;
+  sph.hmax = c.water_depth(); // the depth the speed of sound came from, whatever gave it
   e << YAML::Key << "sph" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "h_over_dp" << YAML::Value << s.h_over_dp << YAML::Key << "alpha" << YAML::Value << s.alpha;
-  e << YAML::Key << "delta" << YAML::Value << s.delta << YAML::Key << "eta" << YAML::Value << s.eta;
-  e << YAML::Key << "cfl" << YAML::Value << s.cfl << YAML::Key << "rho0" << YAML::Value << s.rho0;
-  e << YAML::Key << "hmax" << YAML::Value << c.water_depth() << YAML::Key << "c0" << YAML::Value << s.c0 << YAML::Key
-    << "integrator" << YAML::Value << s.integrator << YAML::Key << "diffusion" << YAML::Value << s.diffusion
-    << YAML::Key << "boundary" << YAML::Value << s.boundary;
-  e << YAML::Key << "euler_every" << YAML::Value << s.euler_every << YAML::Key << "rho_min" << YAML::Value << s.rho_min;
-  e << YAML::Key << "rho_max" << YAML::Value << s.rho_max << YAML::Key << "max_removed_share" << YAML::Value
-    << s.max_removed_share << YAML::Key << "hydrostatic_init" << YAML::Value << s.hydrostatic_init;
+  write_fields(e, sph_fields(), sph);
   e << YAML::EndMap;
   e << YAML::Key << "fluid" << YAML::Value << YAML::BeginSeq;
   for (const auto& f : c.fluid) {
@@ -755,16 +707,14 @@ std::string to_yaml(const Case& c) {
   if (c.dem.active()) {
     const auto& d = c.dem;
     e << YAML::Key << "dem" << YAML::Value << YAML::BeginMap;
-    e << YAML::Key << "dt_factor" << YAML::Value << d.dt_factor << YAML::Key << "bond_gap" << YAML::Value << d.bond_gap;
-    e << YAML::Key << "local_damping" << YAML::Value << d.local_damping;
+    write_fields(e, dem_fields(), d);
     e << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
     for (const auto& m : d.materials) {
-      e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name << YAML::Key << "density"
-        << YAML::Value << m.density << YAML::Key << "E" << YAML::Value << m.young << YAML::Key << "nu" << YAML::Value
-        << m.nu << YAML::Key << "phi" << YAML::Value << m.phi_deg << YAML::Key << "restitution" << YAML::Value
-        << m.restitution << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_roll
-        << m.k_roll_max << YAML::EndSeq << YAML::Key << "twisting" << YAML::Value << YAML::Flow << YAML::BeginSeq
-        << m.k_twist << m.k_twist_max << YAML::EndSeq;
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
+      write_fields(e, material_fields(), m);
+      e << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_roll << m.k_roll_max
+        << YAML::EndSeq << YAML::Key << "twisting" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_twist
+        << m.k_twist_max << YAML::EndSeq;
       if (m.bonded)
         e << YAML::Key << "bond" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "cn" << YAML::Value
           << m.bond_cn << YAML::Key << "cs" << YAML::Value << m.bond_cs << YAML::EndMap;
@@ -810,8 +760,9 @@ std::string to_yaml(const Case& c) {
     }
     e << YAML::EndSeq << YAML::EndMap;
   }
-  e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap << YAML::Key << "body_layers" << YAML::Value
-    << c.coupling.body_layers << YAML::Key << "force_sum" << YAML::Value << c.coupling.force_sum << YAML::EndMap;
+  e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap;
+  write_fields(e, coupling_fields(), c.coupling);
+  e << YAML::EndMap;
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

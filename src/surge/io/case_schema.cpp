@@ -1,0 +1,332 @@
+#include "surge/io/case_schema.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace surge::io {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+} // namespace
+
+bool Range::holds(double v) const {
+  const bool above = lo_open ? v > lo : v >= lo;
+  const bool below = hi_open ? v < hi : v <= hi;
+  return above && below; // NaN fails both
+}
+
+std::string Range::message() const {
+  const bool no_hi = std::isinf(hi);
+  if (no_hi && lo == 0) return lo_open ? "must be positive" : "must not be negative";
+  if (no_hi) return (lo_open ? "must exceed " : "must be at least ") + num(lo);
+  return "must lie in " + text();
+}
+
+std::string Range::text() const {
+  const bool no_lo = std::isinf(lo), no_hi = std::isinf(hi);
+  if (no_lo && no_hi) return "";
+  if (no_hi) return (lo_open ? "> " : ">= ") + num(lo);
+  if (no_lo) return (hi_open ? "< " : "<= ") + num(hi);
+  return std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+}
+
+Range positive() { return between(0, true, std::numeric_limits<double>::infinity(), false); }
+Range non_negative() { return between(0, false, std::numeric_limits<double>::infinity(), false); }
+Range at_least(double lo) { return between(lo, false, std::numeric_limits<double>::infinity(), false); }
+Range between(double lo, bool lo_open, double hi, bool hi_open) {
+  Range r;
+  r.lo = lo;
+  r.hi = hi;
+  r.lo_open = lo_open;
+  r.hi_open = hi_open;
+  return r;
+}
+
+const std::vector<Field<TimeConfig>>& time_fields() {
+  using T = TimeConfig;
+  static const std::vector<Field<T>> f{
+      {"end", &T::end, "s", positive(), {}, "simulated time at which the run stops"},
+      {"output_every", &T::output_every, "s", positive(), {}, "time between particle outputs (and checkpoints)"},
+      {"gauge_every", &T::gauge_every, "s", non_negative(), {}, "time between gauge samples; 0: output_every / 10"},
+      {"dt_min",
+       &T::dt_min,
+       "s",
+       non_negative(),
+       {},
+       "a step shorter than this stops the run as diverged; 0: 1e-3 of the first step"},
+      {"max_steps", &T::max_steps, "", non_negative(), {}, "stop after this many steps; 0: no limit (benchmarks)"},
+      {"checkpoint_every_wall",
+       &T::checkpoint_every_wall,
+       "s (wall clock)",
+       non_negative(),
+       {},
+       "wall-clock time between checkpoints written between outputs; 0: with outputs only"},
+  };
+  return f;
+}
+
+const std::vector<Field<SphConfig>>& sph_fields() {
+  using S = SphConfig;
+  static const std::vector<Field<S>> f{
+      {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
+      {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2)"},
+      {"delta", &S::delta, "-", non_negative(), {}, "delta-SPH density diffusion coefficient (SPEC 2.3)"},
+      {"eta", &S::eta, "-", positive(), {}, "speed of sound over sqrt(g hmax) when c0 is 0 (SPEC 2.4)"},
+      {"cfl", &S::cfl, "-", positive(), {}, "Courant number of the time step (SPEC 2.5)"},
+      {"rho0", &S::rho0, "kg/m^3", positive(), {}, "reference density of the water"},
+      {"hmax",
+       &S::hmax,
+       "m",
+       non_negative(),
+       {},
+       "water depth for the speed of sound; 0: from the fluid boxes (highest top - lowest bottom)"},
+      {"c0", &S::c0, "m/s", non_negative(), {}, "speed of sound; 0: eta sqrt(g hmax)"},
+      {"integrator",
+       &S::integrator,
+       "",
+       {},
+       {"verlet", "symplectic"},
+       "time integration: verlet (the paper's, one force evaluation per step) or symplectic (two)"},
+      {"diffusion",
+       &S::diffusion,
+       "",
+       {},
+       {"molteni", "fourtakas"},
+       "density diffusion: molteni (SPEC 2.3) or fourtakas (its dynamic part only)"},
+      {"boundary",
+       &S::boundary,
+       "",
+       {},
+       {"dynamic", "mdbc"},
+       "wall model: dynamic (the paper's, a gap of about h) or mdbc (modified dynamic, no gap)"},
+      {"euler_every", &S::euler_every, "steps", at_least(1), {}, "Verlet: an Euler step every this many steps"},
+      {"rho_min",
+       &S::rho_min,
+       "of rho0",
+       between(0, true, 1, true),
+       {},
+       "fluid particles below this density are removed"},
+      {"rho_max", &S::rho_max, "of rho0", between(1, true, INFINITY, false), {}, "and above this one"},
+      {"max_removed_share",
+       &S::max_removed_share,
+       "-",
+       between(0, true, 1, false),
+       {},
+       "stop the run when more than this share of the fluid particles has been removed"},
+      {"hydrostatic_init",
+       &S::hydrostatic_init,
+       "",
+       {},
+       {},
+       "start the water at the hydrostatic density below its box's top"},
+  };
+  return f;
+}
+
+const std::vector<Field<CouplingConfig>>& coupling_fields() {
+  using C = CouplingConfig;
+  static const std::vector<Field<C>> f{
+      {"body_layers", &C::body_layers, "", non_negative(), {}, "layers of body particles per sphere; 0: ceil(2h/dp)"},
+      {"force_sum",
+       &C::force_sum,
+       "",
+       {},
+       {"exact", "per_sphere"},
+       "distributed runs: exact (bitwise the same on any number of processes) or per_sphere (less traffic)"},
+  };
+  return f;
+}
+
+const std::vector<Field<DemConfig>>& dem_fields() {
+  using D = DemConfig;
+  static const std::vector<Field<D>> f{
+      {"dt_factor", &D::dt_factor, "-", between(0, true, 0.5, false), {}, "DEM step over min sqrt(m / k_n)"},
+      {"bond_gap",
+       &D::bond_gap,
+       "m",
+       non_negative(),
+       {},
+       "spheres of bonded materials closer than this are bonded at the start"},
+      {"local_damping",
+       &D::local_damping,
+       "-",
+       between(0, false, 1, true),
+       {},
+       "Cundall local damping (0 for dynamic runs, about 0.7 to settle a pack)"},
+  };
+  return f;
+}
+
+const std::vector<Field<DemMaterialSpec>>& material_fields() {
+  using M = DemMaterialSpec;
+  static const std::vector<Field<M>> f{
+      {"density", &M::density, "kg/m^3", positive(), {}, "sphere density"},
+      {"E", &M::young, "Pa", positive(), {}, "Young's modulus (contact stiffness, SPEC 3.1)"},
+      {"nu", &M::nu, "-", positive(), {}, "Poisson's ratio (tangential stiffness)"},
+      {"phi", &M::phi_deg, "degrees", between(0, false, 90, true), {}, "friction angle"},
+      {"restitution", &M::restitution, "-", between(0, true, 1, false), {}, "coefficient of restitution"},
+  };
+  return f;
+}
+
+namespace {
+
+template <class S>
+std::string type_of(const Field<S>& f) {
+  if (std::holds_alternative<double S::*>(f.member)) return "number";
+  if (std::holds_alternative<bool S::*>(f.member)) return "true/false";
+  if (std::holds_alternative<std::string S::*>(f.member)) return f.choices.empty() ? "text" : "choice";
+  return "integer";
+}
+
+template <class S>
+std::string default_of(const Field<S>& f, const S& defaults) {
+  if (const auto* m = std::get_if<double S::*>(&f.member)) return num(defaults.**m);
+  if (const auto* m = std::get_if<int S::*>(&f.member)) return num(defaults.**m);
+  if (const auto* m = std::get_if<long S::*>(&f.member)) return num(static_cast<double>(defaults.**m));
+  if (const auto* m = std::get_if<bool S::*>(&f.member)) return defaults.**m ? "true" : "false";
+  return defaults.*std::get<std::string S::*>(f.member);
+}
+
+template <class S>
+std::string allowed_of(const Field<S>& f) {
+  if (!f.choices.empty()) {
+    std::string a;
+    for (const auto& c : f.choices) a += (a.empty() ? "" : " | ") + c;
+    return a;
+  }
+  return f.range.text();
+}
+
+template <class S>
+void add(std::vector<KeyDoc>& out, const std::string& prefix, const std::vector<Field<S>>& fields) {
+  static const S defaults = S(); // static: GCC 12 misreads a local one through member pointers as uninitialised
+  for (const auto& f : fields)
+    out.push_back({prefix + f.key, type_of(f), default_of(f, defaults), f.unit, allowed_of(f), f.help});
+}
+
+std::vector<KeyDoc> build_keys() {
+  std::vector<KeyDoc> k;
+  const std::string vec = "[x, y, z]";
+  k.push_back({"name", "text", "required", "", "no slashes", "the case's name (the default output folder out/NAME)"});
+  k.push_back({"dp", "number", "required", "m", "> 0", "particle spacing of water and SPH walls (DEM-only: unused)"});
+  k.push_back({"time", "mapping", "", "", "", "times of the run"});
+  add(k, "time.", time_fields());
+  k.push_back({"gravity", vec, "[0, 0, -9.81]", "m/s^2", "", "gravity"});
+  k.push_back({"domain", "mapping", "required", "", "", "the box water may occupy (grown by the wall layers)"});
+  k.push_back({"domain.min", vec, "required", "m", "", "lowest corner"});
+  k.push_back({"domain.max", vec, "required", "m", "> min", "highest corner"});
+  k.push_back({"sph", "mapping", "", "", "", "the water's model"});
+  add(k, "sph.", sph_fields());
+  k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});
+  k.push_back({"fluid[].box", "{min, max}", "required", "m", "inside the domain", "the box of water"});
+  k.push_back({"fluid[].velocity", vec, "[0, 0, 0]", "m/s", "", "its initial velocity"});
+  k.push_back({"walls", "list", "", "", "", "SPH walls: box tanks, solid boxes, triangle meshes"});
+  k.push_back({"walls[].name", "text", "wallN", "", "unique", "name for force gauges"});
+  k.push_back({"walls[].box", "{min, max}", "", "m", "", "a tank (layers outside it) or, with solid, an obstacle"});
+  k.push_back({"walls[].open", "list of faces", "[]", "", "xmin xmax ymin ymax zmin zmax",
+               "a box tank's faces left without wall"});
+  k.push_back({"walls[].solid", "true/false", "false", "", "",
+               "box: fill the inside (an obstacle); mesh: no water behind the surface"});
+  k.push_back({"walls[].mesh", "file", "", "", "ASCII or binary STL",
+               "a triangle mesh (relative to the case file); normals point to the water"});
+  k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
+  k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
+  k.push_back({"gauges[].type", "choice", "required", "", "height | pressure | velocity | force | sphere | dem_wall",
+               "what is measured"});
+  k.push_back({"gauges[].x", "number", "required (height)", "m", "", "height gauge: the vertical line's x"});
+  k.push_back({"gauges[].y", "number", "required (height)", "m", "", "height gauge: the vertical line's y"});
+  k.push_back({"gauges[].surface", "choice", "column", "", "column | highest",
+               "height gauge: the top of the water standing on the bed, or the highest wet point"});
+  k.push_back({"gauges[].at", vec, "required (pressure, velocity)", "m", "inside the domain", "the probe's point"});
+  k.push_back({"gauges[].component", "choice", "by type", "", "x y z mag | x..mz | fx..mz",
+               "velocity and force: x, y, z, mag; sphere: x, y, z, vx..vz, fx..fz, mx..mz; dem_wall: fx..mz"});
+  k.push_back({"gauges[].wall", "text", "required (force, dem_wall)", "", "a wall's name", "the wall measured"});
+  k.push_back({"gauges[].sphere", "integer", "required (sphere)", "", ">= 0",
+               "the sphere (packs in order, spheres in pack order)"});
+  k.push_back({"gauges[].about", vec, "[0, 0, 0]", "m", "", "dem_wall: moments about this point"});
+  k.push_back({"dem", "mapping", "", "", "", "the landslide as DEM spheres (SPEC 3)"});
+  add(k, "dem.", dem_fields());
+  k.push_back({"dem.materials", "list", "required", "", "at least one", "materials by name"});
+  k.push_back({"dem.materials[].name", "text", "required", "", "unique", "the material's name"});
+  add(k, "dem.materials[].", material_fields());
+  k.push_back({"dem.materials[].rolling", "[k, cap]", "[0, 0]", "-", ">= 0",
+               "rolling resistance: stiffness and cap factors (SPEC 3.3)"});
+  k.push_back({"dem.materials[].twisting", "[k, cap]", "[0, 0]", "-", ">= 0", "twisting resistance factors"});
+  k.push_back({"dem.materials[].bond", "{cn, cs}", "", "Pa", ">= 0",
+               "bonded material: normal and shear bond strengths (SPEC 3.4)"});
+  k.push_back({"dem.walls", "list", "", "", "", "walls the spheres meet: planes and meshes"});
+  k.push_back({"dem.walls[].name", "text", "", "", "", "name for dem_wall gauges"});
+  k.push_back({"dem.walls[].plane", "{point, normal}", "", "m", "normal not zero", "an infinite plane"});
+  k.push_back({"dem.walls[].mesh", "file", "", "", "STL", "a triangle mesh"});
+  k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
+  k.push_back({"dem.packs", "list", "", "", "", "sphere packs"});
+  k.push_back({"dem.packs[].box", "{min, max}", "", "m", "inside the domain", "a lattice (or random pack) in a box"});
+  k.push_back({"dem.packs[].mesh", "file", "", "", "closed STL", "a pack inside a closed mesh"});
+  k.push_back({"dem.packs[].csv", "file", "", "", "x, y, z, r per line", "spheres listed in a file"});
+  k.push_back({"dem.packs[].radius", "number", "required (box, mesh)", "m", "> 0", "sphere radius"});
+  k.push_back({"dem.packs[].jitter", "number", "0", "of the radius", "[0, 0.5)", "random offset of each sphere"});
+  k.push_back({"dem.packs[].random", "integer", "0", "", ">= 0", "> 0: a random loose pack of this many spheres"});
+  k.push_back({"dem.packs[].settle", "number", "0", "s", ">= 0", "settle the pack under gravity for this long"});
+  k.push_back({"dem.packs[].material", "text", "required", "", "a material's name", "the spheres' material"});
+  k.push_back({"dem.packs[].velocity", vec, "[0, 0, 0]", "m/s", "", "initial velocity"});
+  k.push_back({"dem.packs[].fixed", "true/false", "false", "", "", "held in place (forces still computed)"});
+  k.push_back({"coupling", "mapping", "", "", "", "SPH-DEM coupling (SPEC 4)"});
+  add(k, "coupling.", coupling_fields());
+  return k;
+}
+
+} // namespace
+
+const std::vector<KeyDoc>& case_keys() {
+  static const std::vector<KeyDoc> keys = build_keys();
+  return keys;
+}
+
+std::vector<std::string> keys_under(const std::string& parent) {
+  std::vector<std::string> out;
+  const std::string prefix = parent.empty() ? "" : parent + ".";
+  for (const auto& k : case_keys()) {
+    if (k.path.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = k.path.substr(prefix.size());
+    if (rest.find('.') == std::string::npos && rest.find('[') == std::string::npos) out.push_back(rest);
+  }
+  return out;
+}
+
+std::string case_reference_markdown() {
+  std::ostringstream s;
+  s << "# Case file reference\n\n"
+    << "Generated by `surge keys --markdown` from `src/surge/io/case_schema.cpp`; CI fails if this\n"
+    << "file differs from what the program prints. `[]` stands for each item of a list\n"
+    << "(`walls[].box` is the key `box` of an item of `walls`; with `--set`, `walls.0.box`).\n\n"
+    << "| key | type | default | unit | allowed | meaning |\n|---|---|---|---|---|---|\n";
+  auto cell = [](const std::string& v) {
+    std::string o;
+    for (char ch : v) o += ch == '|' ? std::string("\\|") : std::string(1, ch);
+    return o;
+  };
+  for (const auto& k : case_keys())
+    s << "| `" << k.path << "` | " << cell(k.type) << " | " << cell(k.def) << " | " << cell(k.unit) << " | "
+      << cell(k.allowed) << " | " << cell(k.help) << " |\n";
+  return s.str();
+}
+
+std::string keys_text(const std::string& prefix) {
+  std::ostringstream s;
+  for (const auto& k : case_keys()) {
+    if (k.path.compare(0, prefix.size(), prefix) != 0) continue;
+    s << k.path << "  (" << k.type;
+    if (!k.def.empty()) s << (k.def.rfind("required", 0) == 0 ? ", " : ", default ") << k.def;
+    if (!k.unit.empty() && k.unit != "-") s << ", " << k.unit;
+    if (!k.allowed.empty()) s << ", " << k.allowed;
+    s << ")\n    " << k.help << "\n";
+  }
+  return s.str();
+}
+
+} // namespace surge::io
