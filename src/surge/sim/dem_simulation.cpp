@@ -9,12 +9,14 @@
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
+#include "surge/sim/run_loop.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/simulation.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -42,161 +44,130 @@ int check_dem(const Case& c) {
   return 0;
 }
 
-int run_dem(const Case& c, const RunOptions& opt) {
-  const auto wall0 = Clock::now();
-  const DemSetup setup = dem_setup(c);
-  check_sphere_gauges(c, setup.spheres.size());
-  auto solver = make_dem_solver(c, setup);
-  const long bonds = setup.bonded ? solver.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
-  const Real dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
+namespace {
 
-  namespace fs = std::filesystem;
-  const fs::path out(opt.out_dir);
-  io::Checkpoint ck;
-  if (opt.restart) {
-    const std::string path = (out / "checkpoint.bin").string();
-    ck = io::read_checkpoint(path);
-    if (ck.dem_state.empty() || !ck.particles.pos.empty())
-      throw InputError(path, 0, "", "not the checkpoint of a DEM-only run; restart with the case.yaml of that run");
-    if (!ck.gauge_rows.empty() && ck.gauge_rows.front().size() != c.gauges.size() + 1)
-      throw InputError(path, 0, "gauges", "the checkpoint's gauges differ from the case's");
-    try {
-      solver.restore(ck.dem_state);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(path, 0, "dem", std::string(e.what()) + "; restart with the case.yaml of that run");
+// Spheres only, on one process, at the fixed step of the DEM.
+class DemStepper final : public Stepper {
+public:
+  DemStepper(const Case& c, const RunOptions& opt, const io::Checkpoint* ck)
+      : c_(c), setup_(dem_setup(c)), solver_(make_dem_solver(c, setup_)), out_(opt.out_dir),
+        pvd_((out_ / "spheres.pvd").string()) {
+    check_sphere_gauges(c, setup_.spheres.size());
+    bonds_ = setup_.bonded ? solver_.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
+    dt_ = solver_.critical_dt(static_cast<Real>(c.dem.dt_factor));
+    if (ck) {
+      const std::string path = (out_ / "checkpoint.bin").string();
+      if (ck->dem_state.empty() || !ck->particles.pos.empty())
+        throw InputError(path, 0, "", "not the checkpoint of a DEM-only run; restart with the case.yaml of that run");
+      if (!ck->gauge_rows.empty() && ck->gauge_rows.front().size() != c.gauges.size() + 1)
+        throw InputError(path, 0, "gauges", "the checkpoint's gauges differ from the case's");
+      try {
+        solver_.restore(ck->dem_state);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(path, 0, "dem", std::string(e.what()) + "; restart with the case.yaml of that run");
+      }
+      steps_ = ck->steps;
     }
+    std::filesystem::create_directories(out_ / "particles");
+    io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
   }
-  fs::create_directories(out / "particles");
-  io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
-  io::PvdCollection pvd((out / "spheres.pvd").string());
-  double t = 0;
-  long steps = 0;
-  int frame = 0;
-  std::string status = "running", message;
-  int code = 0;
-  auto write_summary = [&] {
-    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    const double n = static_cast<double>(setup.spheres.size());
-    std::ostringstream j;
-    j.precision(10);
-    j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n  \"backend\": \""
-      << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n  \"status\": \"" << status
-      << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << json_escape(message) << "\",\n"
-      << "  \"particles\": {\"fluid\": 0, \"wall\": 0, \"body\": 0, \"sphere\": " << setup.spheres.size() << "},\n"
-      << "  \"dem\": {\"dt\": " << dt << ", \"bonds\": " << bonds << ", \"broken_bonds\": " << solver.broken_bonds()
-      << "},\n  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"particle_steps_per_second\": " << (wall > 0 ? n * static_cast<double>(steps) / wall : 0.0)
-      << ",\n  \"removed\": {\"total\": 0},\n  \"peak_rss_bytes\": " << peak_rss_bytes() << "\n}\n";
-    io::write_file_atomic((out / "summary.json").string(), j.str());
-  };
-  // Sphere gauges (the only kind a DEM-only case has): no fluid force.
-  std::vector<std::string> gauge_names;
-  for (const auto& g : c.gauges) gauge_names.push_back(g.name);
-  std::vector<std::vector<double>> rows;
-  auto sample_gauges = [&] {
-    const auto sp = solver.spheres();
-    std::vector<double> row{t};
-    for (const auto& g : c.gauges)
-      row.push_back(g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, setup, solver)
-                                                 : sphere_gauge_value(g, sp, {}, {}, setup.origin));
-    rows.push_back(std::move(row));
-  };
-  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
-  std::vector<double> frame_times;
-  WallCheckpoints wall_checkpoints(c.time.checkpoint_every_wall);
-  // The gauge rows so far and the checkpoint: with every output, and between outputs
-  // when a wall-clock checkpoint is due.
-  auto save_progress = [&] {
-    if (!gauge_names.empty()) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauge_names, rows));
-    io::Checkpoint k;
-    k.time = t;
-    k.steps = steps;
-    k.frame = frame;
-    k.next_output = next_out;
-    k.next_gauge = next_gauge;
-    k.frame_times = frame_times;
-    k.gauge_rows = rows;
-    k.dem_state = solver.save();
-    io::write_checkpoint((out / "checkpoint.bin").string(), k);
-    wall_checkpoints.written();
-  };
-  auto write_output = [&] {
-    const io::SphereFrame f = sphere_frame(solver);
+
+  double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
+    (void)dt_max, (void)t, (void)stop, (void)failure; // one process; non-finite states are caught at outputs
+    solver_.step(dt_); // a fixed step: outputs fall on the first step at or after their time
+    ++steps_;
+    checkpoint_due = checkpoint_due && solver_.finite(); // never a checkpoint of a diverged state
+    return static_cast<double>(dt_);
+  }
+
+  [[nodiscard]] long steps() const override { return steps_; }
+  [[nodiscard]] std::vector<std::string> gauge_names() const override {
+    std::vector<std::string> n;
+    for (const auto& g : c_.gauges) n.push_back(g.name);
+    return n;
+  }
+  // Sphere and DEM-wall gauges (the only kinds a DEM-only case has): no fluid force.
+  std::vector<double> sample(double t) override {
+    (void)t;
+    const auto sp = solver_.spheres();
+    std::vector<double> row;
+    for (const auto& g : c_.gauges)
+      row.push_back(g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, setup_, solver_)
+                                                 : sphere_gauge_value(g, sp, {}, {}, setup_.origin));
+    return row;
+  }
+
+  bool write_frame(int frame, double t, std::string& failure) override {
+    const io::SphereFrame f = sphere_frame(solver_);
     for (const auto& p : f.pos)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false; // keep the last good files
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        failure = "non-finite sphere position at t = " + std::to_string(t) + " s; try a smaller dem.dt_factor";
+        return false;
+      }
     char name[64];
-    std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame++);
-    io::write_spheres_vtp((out / "particles" / name).string(), f, setup.origin);
-    pvd.add(t, std::string("particles/") + name);
-    frame_times.push_back(t);
-    save_progress();
+    std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
+    io::write_spheres_vtp((out_ / "particles" / name).string(), f, setup_.origin);
+    pvd_.add(t, std::string("particles/") + name);
     return true;
-  };
-  if (opt.restart) {
-    t = ck.time;
-    steps = ck.steps;
-    frame = ck.frame;
-    next_out = ck.next_output;
-    next_gauge = ck.next_gauge;
-    frame_times = ck.frame_times;
-    rows = ck.gauge_rows;
+  }
+
+  void save(io::Checkpoint& k) override { k.dem_state = solver_.save(); }
+
+  void restored(const std::vector<double>& frame_times) override {
     std::vector<std::pair<double, std::string>> entries;
     for (std::size_t k = 0; k < frame_times.size(); ++k) {
       char name[64];
       std::snprintf(name, sizeof name, "particles/spheres_%04zu.vtp", k);
       entries.emplace_back(frame_times[k], name);
     }
-    pvd.restore(entries);
-    if (!opt.quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, steps);
-  } else {
-    if (!gauge_names.empty()) sample_gauges();
-    write_output();
+    pvd_.restore(entries);
   }
-  write_summary();
-  const double eps = 1e-9 * c.time.end;
-  auto last_report = Clock::now();
-  while (t < c.time.end - eps) {
-    if (opt.stop && *opt.stop) break;
-    if (c.time.max_steps > 0 && steps >= c.time.max_steps) break;
-    solver.step(dt); // a fixed step: outputs fall on the first step at or after their time
-    t += static_cast<double>(dt);
-    ++steps;
-    if (!gauge_names.empty() && t >= next_gauge - eps) {
-      sample_gauges();
-      next_gauge += c.time.gauge_every;
-    }
-    if (t >= next_out - eps) {
-      next_out += c.time.output_every;
-      if (!write_output()) {
-        status = "diverged";
-        code = 3;
-        message = "non-finite sphere position at t = " + std::to_string(t) + " s; try a smaller dem.dt_factor";
-        write_summary();
-        std::fprintf(stderr, "error: %s\n", message.c_str());
-        return 3;
-      }
-      write_summary();
-    } else if (wall_checkpoints.due() && solver.finite()) {
-      save_progress(); // no frame
-    }
-    const auto now = Clock::now();
-    if (!opt.quiet &&
-        std::chrono::duration<double>(now - last_report).count() > (opt.progress_tty ? 0.5 : opt.report_every_s)) {
-      last_report = now;
-      std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %ld steps  %ld broken bonds%s", opt.progress_tty ? "\r" : "", t,
-                   c.time.end, 100.0 * t / c.time.end, steps, solver.broken_bonds(), opt.progress_tty ? "   " : "\n");
-    }
+
+  void write_summary(const std::string& status, int code, const std::string& message, const LoopClock& k) override {
+    const double n = static_cast<double>(setup_.spheres.size());
+    std::ostringstream j;
+    j.precision(10);
+    j << "{\n  \"name\": \"" << c_.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n  \"backend\": \""
+      << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n  \"status\": \"" << status
+      << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << json_escape(message) << "\",\n"
+      << "  \"particles\": {\"fluid\": 0, \"wall\": 0, \"body\": 0, \"sphere\": " << setup_.spheres.size() << "},\n"
+      << "  \"dem\": {\"dt\": " << dt_ << ", \"bonds\": " << bonds_ << ", \"broken_bonds\": " << solver_.broken_bonds()
+      << "},\n  \"steps\": " << k.steps << ",\n  \"simulated_time\": " << k.t << ",\n  \"wall_seconds\": " << k.wall
+      << ",\n  \"loop_steps\": " << k.loop_steps << ",\n  \"loop_seconds\": " << k.loop_wall
+      << ",\n  \"particle_steps_per_second\": "
+      << (k.loop_wall > 0 ? n * static_cast<double>(k.loop_steps) / k.loop_wall : 0.0)
+      << ",\n  \"removed\": {\"total\": 0},\n  \"peak_rss_bytes\": " << peak_rss_bytes() << "\n}\n";
+    io::write_file_atomic((out_ / "summary.json").string(), j.str());
   }
-  const bool interrupted = opt.stop && *opt.stop;
-  if (frame_times.empty() || t > frame_times.back()) write_output(); // the final state, unless just written
-  status = interrupted ? "interrupted" : "completed";
-  code = interrupted ? 130 : 0;
-  write_summary();
-  if (!opt.quiet)
-    std::fprintf(stderr, "%s%s: %ld DEM steps to t = %.4g s, %zu spheres, %ld of %ld bonds broken\n  output in %s\n",
-                 opt.progress_tty ? "\n" : "", status.c_str(), steps, t, setup.spheres.size(), solver.broken_bonds(),
-                 bonds, out.string().c_str());
-  return code;
+
+  [[nodiscard]] std::string progress() const override {
+    return "  " + std::to_string(solver_.broken_bonds()) + " broken bonds";
+  }
+
+  void report_end(const std::string& status, const LoopClock& k) override {
+    std::fprintf(stderr, "%s: %ld DEM steps to t = %.4g s, %zu spheres, %ld of %ld bonds broken\n  output in %s\n",
+                 status.c_str(), k.steps, k.t, setup_.spheres.size(), solver_.broken_bonds(), bonds_,
+                 out_.string().c_str());
+  }
+
+private:
+  const Case& c_;
+  DemSetup setup_;
+  dem::DemSolver solver_;
+  std::filesystem::path out_;
+  io::PvdCollection pvd_;
+  long bonds_ = 0, steps_ = 0;
+  Real dt_ = 0;
+};
+
+} // namespace
+
+int run_dem(const Case& c, const RunOptions& opt) {
+  const auto wall0 = Clock::now();
+  std::optional<io::Checkpoint> ck;
+  if (opt.restart) ck = io::read_checkpoint((std::filesystem::path(opt.out_dir) / "checkpoint.bin").string());
+  DemStepper s(c, opt, ck ? &*ck : nullptr);
+  return run_loop(c, opt, s, ck ? &*ck : nullptr, wall0);
 }
 
 } // namespace surge::sim

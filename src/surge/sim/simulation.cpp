@@ -10,6 +10,7 @@
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/distributed_run.hpp"
+#include "surge/sim/run_loop.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/wall_leaks.hpp"
 #include "surge/sph/gauges.hpp"
@@ -192,312 +193,244 @@ int check(const Case& c) {
   return 0;
 }
 
-int run(const Case& c, const RunOptions& opt) {
-  // DEM-only cases are not distributed: rank 0 runs them.
-  if (c.dem.active() && !c.coupled()) return DistributedRun::root() ? run_dem(c, opt) : 0;
-  const auto wall0 = Clock::now();
-  // Everything that can fail on input happens before the output folder is touched.
-  sph::InitialState init = sph::build_initial_state(c);
-  std::optional<CoupledParts> cp;
-  if (c.coupled()) cp.emplace(c, init);
-  // A distributed run's solver starts empty: each process uploads only its slab (below).
-  const particles::HostParticles none;
-  sph::WcsphSolver solver(c, init, DistributedRun::enabled() ? &none : nullptr);
-  sph::Gauges gauges(c, init);
-  const ExtraCounts extra{cp ? cp->coupling->n_body() : 0, cp ? cp->setup.spheres.size() : 0};
-  // Built with MPI: slabs of particles, one per process; only rank 0 writes files and prints.
-  DistributedRun dist(c, solver, cp ? cp->coupling.get() : nullptr);
-  const bool root = DistributedRun::root();
-  const bool quiet = opt.quiet || !root;
+namespace {
 
-  namespace fs = std::filesystem;
-  const fs::path out(opt.out_dir);
-  io::Checkpoint ck;
-  if (opt.restart) {
-    ck = io::read_checkpoint((out / "checkpoint.bin").string());
-    if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges.names().size() + 1)
-      throw InputError((out / "checkpoint.bin").string(), 0, "gauges",
-                       "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
-    if (ck.dem_state.empty() != !cp)
-      throw InputError((out / "checkpoint.bin").string(), 0, "dem",
-                       cp ? "the checkpoint holds no DEM spheres but the case has them; restart with the case.yaml of "
-                            "that run"
-                          : "the checkpoint holds DEM spheres but the case has none; restart with the case.yaml of "
-                            "that run");
-    if (cp) {
-      try {
-        cp->dem->restore(ck.dem_state);
-      } catch (const std::invalid_argument& e) {
-        throw InputError((out / "checkpoint.bin").string(), 0, "dem",
-                         std::string(e.what()) + "; restart with the case.yaml of that run");
+// Water, and with DEM packs the spheres coupled to it, on one process or as one slab of a
+// distributed run.
+class SphStepper final : public Stepper {
+public:
+  // `ck`: the checkpoint of a restart (its particles are moved out). Everything that can
+  // fail on input happens before the output folder is touched.
+  SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
+      : c_(c), opt_(opt), init_(sph::build_initial_state(c)), cp_(coupled_parts(c, init_)),
+        solver_(c, init_, DistributedRun::enabled() ? &none_ : nullptr),
+        gauges_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
+        dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
+        walls_pvd_((out_ / "walls.pvd").string()), fluid_pvd_((out_ / "fluid.pvd").string()),
+        dt_min_(c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c)),
+        max_removed_(c.sph.max_removed_share * static_cast<double>(init_.n_fluid)) {
+    if (cp_) spheres_pvd_.emplace((out_ / "spheres.pvd").string());
+    if (ck) check_restart(*ck);
+    if (root()) {
+      std::filesystem::create_directories(out_ / "particles");
+      io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
+    }
+    if (ck) {
+      tot_.removed_domain = ck->removed_domain;
+      tot_.removed_density = ck->removed_density;
+      tot_.non_finite = ck->non_finite;
+      dist_.start(std::move(ck->particles), ck->steps); // a checkpoint of any number of processes
+      // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
+      // placed again are the checkpoint's, bit for bit).
+      if (cp_) cp_->coupling->place_bodies(solver_, *cp_->dem);
+      ck->particles = {};
+    } else {
+      if (root()) {
+        io::write_particles_vtp((out_ / "particles" / "walls_0000.vtp").string(), init_.particles, init_.origin,
+                                {Kind::Wall});
+        walls_pvd_.add(0.0, "particles/walls_0000.vtp");
       }
+      dist_.start(init_.particles);
+      if (cp_) cp_->coupling->reduce_forces(solver_, *cp_->dem); // the fluid force at t = 0, for the gauges
     }
-  }
-  if (root) {
-    fs::create_directories(out / "particles");
-    io::write_file_atomic((out / "case.yaml").string(), io::to_yaml(c));
-  }
-  io::PvdCollection walls_pvd((out / "walls.pvd").string());
-  io::PvdCollection fluid_pvd((out / "fluid.pvd").string());
-  std::optional<io::PvdCollection> spheres_pvd;
-  if (cp) spheres_pvd.emplace((out / "spheres.pvd").string());
-  if (!opt.restart && root) {
-    io::write_particles_vtp((out / "particles" / "walls_0000.vtp").string(), init.particles, init.origin, {Kind::Wall});
-    walls_pvd.add(0.0, "particles/walls_0000.vtp");
   }
 
-  particles::HostParticles host;
-  const WallLeaks leaks(c);
-  std::vector<std::vector<double>> rows;
-  Totals tot, since_output;
-  double t = 0;
-  int frame = 0;
-  std::size_t rows_written = 0;
-  std::vector<double> frame_times;
-  // The time loop of this invocation (a restart's loop starts at its checkpoint): the
-  // throughput figures count its steps over its time, set-up and first output excluded.
-  auto loop0 = Clock::now();
-  long steps0 = 0;
-  auto write_summary = [&](const std::string& status, int code, const std::string& msg) {
-    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    const double loop_wall = std::chrono::duration<double>(Clock::now() - loop0).count();
-    // Collective: every process takes part, rank 0 writes (RSS summed over processes).
-    const long n_now = dist.owned_particles();
-    dist.measure_waits();
-    const double rss = dist.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
-    if (root)
-      io::write_file_atomic((out / "summary.json").string(),
-                            summary_json(c, init, extra, status, code, solver.step_count(), t, wall,
-                                         solver.step_count() - steps0, loop_wall, tot, n_now, rss, dist.summary_json(),
-                                         msg));
-  };
-  auto sample_gauges = [&] {
-    dist.sync();
-    std::vector<dem::Sphere> sp;
-    std::vector<Vec3> ff, fm;
-    if (cp) {
-      sp = cp->dem->spheres();
-      ff = cp->dem->external_forces();
-      fm = cp->dem->external_torques();
-    }
-    auto v = gauges.sample(
-        solver,
-        [&](const GaugeSpec& g) {
-          return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c, cp->setup, *cp->dem)
-                                              : sphere_gauge_value(g, sp, ff, fm, init.origin);
-        },
-        dist.distribution());
-    v.insert(v.begin(), t);
-    rows.push_back(std::move(v));
-  };
-  double next_out = c.time.output_every, next_gauge = c.time.gauge_every;
-  WallCheckpoints wall_checkpoints(c.time.checkpoint_every_wall);
-  // The gauge rows so far, the checkpoint and the summary: with every output, and between
-  // outputs when a wall-clock checkpoint is due.
-  auto save_progress = [&] {
-    if (root) io::write_file_atomic((out / "gauges.csv").string(), csv_text(gauges.names(), rows));
-    rows_written = rows.size();
-    io::Checkpoint k;
-    k.time = t;
-    k.steps = solver.step_count();
-    k.frame = frame;
-    k.next_output = next_out;
-    k.next_gauge = next_gauge;
-    k.frame_times = frame_times;
-    k.gauge_rows = rows;
-    k.removed_domain = tot.removed_domain;
-    k.removed_density = tot.removed_density;
-    k.non_finite = tot.non_finite;
-    dist.gather(k.particles, true);
-    if (cp) k.dem_state = cp->dem->save();
-    if (root) io::write_checkpoint((out / "checkpoint.bin").string(), k);
-    wall_checkpoints.written();
-    write_summary("running", 0, "");
-  };
-  auto write_output = [&] {
-    dist.sync();
-    solver.refresh();
-    dist.gather(host, false);
-    char name[64];
-    std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
-    if (root) {
-      io::write_particles_vtp((out / "particles" / name).string(), host, init.origin, {Kind::Fluid});
-      fluid_pvd.add(t, std::string("particles/") + name);
-    }
-    if (cp && root) {
-      std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
-      io::write_spheres_vtp((out / "particles" / name).string(), sphere_frame(*cp->dem), init.origin);
-      spheres_pvd->add(t, std::string("particles/") + name);
-    }
-    if (root) {
-      const LeakCount in_walls = leaks.count(host, init.origin);
-      tot.leaks.add(in_walls, t);
-      if (in_walls.count > 0 && !quiet)
-        std::fprintf(stderr,
-                     "%st = %.4f s: %ld fluid particles inside walls (first: %s) within x [%.3f, %.3f], y [%.3f, "
-                     "%.3f], z [%.3f, %.3f] m\n",
-                     opt.progress_tty ? "\n" : "", t, in_walls.count, in_walls.wall.c_str(), in_walls.lo.x,
-                     in_walls.hi.x, in_walls.lo.y, in_walls.hi.y, in_walls.lo.z, in_walls.hi.z);
-    }
-    frame_times.push_back(t);
-    ++frame;
-    save_progress();
-    if (since_output.removed() > 0 && !quiet)
-      std::fprintf(stderr,
-                   "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
-                   "out of range, %ld non-finite) within x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m\n",
-                   opt.progress_tty ? "\n" : "", t, since_output.removed(), since_output.removed_domain,
-                   since_output.removed_density, since_output.non_finite, since_output.lo.x, since_output.hi.x,
-                   since_output.lo.y, since_output.hi.y, since_output.lo.z, since_output.hi.z);
-    since_output = {};
-  };
-
-  if (opt.restart) {
-    // Continue exactly where the checkpoint was written (at an output time).
-    t = ck.time;
-    frame = ck.frame;
-    next_out = ck.next_output;
-    next_gauge = ck.next_gauge;
-    // Checkpoints of builds before 2026-11-22 were written before the next output time
-    // was advanced: never take a zero-length step on their account.
-    while (next_out <= t + 1e-9 * c.time.end) next_out += c.time.output_every;
-    while (next_gauge <= t + 1e-9 * c.time.end) next_gauge += c.time.gauge_every;
-    frame_times = ck.frame_times;
-    rows = ck.gauge_rows;
-    rows_written = rows.size();
-    tot.removed_domain = ck.removed_domain;
-    tot.removed_density = ck.removed_density;
-    tot.non_finite = ck.non_finite;
-    std::vector<std::pair<double, std::string>> entries;
-    for (int k = 0; k < static_cast<int>(frame_times.size()); ++k) {
-      char name[64];
-      std::snprintf(name, sizeof name, "particles/fluid_%04d.vtp", k);
-      entries.emplace_back(frame_times[k], name);
-    }
-    fluid_pvd.restore(entries);
-    walls_pvd.restore({{0.0, "particles/walls_0000.vtp"}});
-    if (cp) {
-      for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
-      spheres_pvd->restore(entries);
-    }
-    dist.start(std::move(ck.particles), ck.steps); // a checkpoint of any number of processes
-    // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
-    // placed again are the checkpoint's, bit for bit).
-    if (cp) cp->coupling->place_bodies(solver, *cp->dem);
-    ck.particles = {};
-    if (!quiet) std::fprintf(stderr, "restarting at t = %g s (step %ld)\n", t, ck.steps);
-  } else {
-    dist.start(init.particles);
-    if (cp) cp->coupling->reduce_forces(solver, *cp->dem); // the fluid force at t = 0, for the gauges
-    sample_gauges();
-    write_output();
-  }
-  const double eps = 1e-9 * c.time.end;
-  const double dt_min = c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c);
-  const double max_removed = c.sph.max_removed_share * static_cast<double>(init.n_fluid);
-  auto last_report = Clock::now();
-  loop0 = Clock::now();
-  steps0 = solver.step_count();
-  const double t0 = t;
-  std::string failure;
-  bool stop = false; // Ctrl-C, agreed by every process
-  while (t < c.time.end - eps) {
-    if (stop) break;
-    if (c.time.max_steps > 0 && solver.step_count() >= c.time.max_steps) break;
-    const double dt_max = std::min({next_out, next_gauge, c.time.end}) - t;
-    dist.sync();
-    sph::StepStats s = solver.step(dt_max);
-    dist.stepped();
-    if (cp) cp->coupling->after_fluid_step(solver, *cp->dem, s.dt);
+  double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
+    dist_.sync();
+    sph::StepStats s = solver_.step(dt_max);
+    dist_.stepped();
+    if (cp_) cp_->coupling->after_fluid_step(solver_, *cp_->dem, s.dt);
     t += s.dt;
-    stop = opt.stop && *opt.stop;
-    // Wall-clock checkpoints are collective (a gather): every process must agree to write one.
-    bool checkpoint_due = wall_checkpoints.due();
-    dist.combine(s, stop, checkpoint_due);
-    for (Totals* x : {&tot, &since_output}) {
+    dist_.combine(s, stop, checkpoint_due);
+    for (Totals* x : {&tot_, &since_output_}) {
       x->removed_domain += s.removed_domain;
       x->removed_density += s.removed_density;
       x->non_finite += s.non_finite;
       if (s.removed_domain + s.removed_density > 0) {
         for (int k = 0; k < 3; ++k) {
-          x->lo[k] = std::min(x->lo[k], init.origin[k] + static_cast<double>(s.removed_lo[k]));
-          x->hi[k] = std::max(x->hi[k], init.origin[k] + static_cast<double>(s.removed_hi[k]));
+          x->lo[k] = std::min(x->lo[k], init_.origin[k] + static_cast<double>(s.removed_lo[k]));
+          x->hi[k] = std::max(x->hi[k], init_.origin[k] + static_cast<double>(s.removed_hi[k]));
         }
       }
     }
-    if (cp && !cp->dem->finite()) {
-      std::ostringstream m;
-      m << "diverged at t = " << t << " s (step " << solver.step_count()
-        << "): a DEM sphere has a non-finite position (try a smaller dem.dt_factor or sph.cfl)";
+    std::ostringstream m;
+    m << "diverged at t = " << t << " s (step " << solver_.step_count() << "): ";
+    if (cp_ && !cp_->dem->finite()) {
+      m << "a DEM sphere has a non-finite position (try a smaller dem.dt_factor or sph.cfl)";
       failure = m.str();
     } else if (s.non_finite > 0) {
-      std::ostringstream m;
-      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << s.non_finite
-        << " particles have non-finite position, velocity or density";
+      m << s.non_finite << " particles have non-finite position, velocity or density";
       failure = m.str();
-    } else if (static_cast<double>(tot.removed()) > max_removed && init.n_fluid > 0) {
-      std::ostringstream m;
-      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): " << tot.removed() << " of "
-        << init.n_fluid << " fluid particles removed (limit sph.max_removed_share = " << c.sph.max_removed_share << "; "
-        << tot.removed_domain << " left the domain, " << tot.removed_density << " density out of range)";
+    } else if (static_cast<double>(tot_.removed()) > max_removed_ && init_.n_fluid > 0) {
+      m << tot_.removed() << " of " << init_.n_fluid
+        << " fluid particles removed (limit sph.max_removed_share = " << c_.sph.max_removed_share << "; "
+        << tot_.removed_domain << " left the domain, " << tot_.removed_density << " density out of range)";
       failure = m.str();
-    } else if (s.dt < dt_min && s.dt < dt_max * (1 - 1e-9)) {
-      std::ostringstream m;
-      m << "diverged at t = " << t << " s (step " << solver.step_count() << "): the time step fell to " << s.dt
-        << " s, below time.dt_min = " << dt_min << " s";
+    } else if (s.dt < dt_min_ && s.dt < dt_max * (1 - 1e-9)) {
+      m << "the time step fell to " << s.dt << " s, below time.dt_min = " << dt_min_ << " s";
       failure = m.str();
     }
-    if (!failure.empty()) break;
-    if (t >= next_gauge - eps) {
-      sample_gauges();
-      next_gauge += c.time.gauge_every;
-    }
-    if (t >= next_out - eps) {
-      next_out += c.time.output_every; // before the checkpoint is written: a restart continues from here
-      write_output();
-    } else if (checkpoint_due) {
-      save_progress(); // no frame
-    }
-    const auto now = Clock::now();
-    const double since = std::chrono::duration<double>(now - last_report).count();
-    if (!quiet && (opt.progress_tty ? since > 0.5 : since > opt.report_every_s)) {
-      last_report = now;
-      const double el = std::chrono::duration<double>(now - loop0).count();
-      // Rates over this session only (a restart starts the clock at its checkpoint).
-      const double sps = static_cast<double>(solver.step_count() - steps0) / el;
-      const double eta_s = el * (c.time.end - t) / std::max(t - t0, 1e-12);
-      std::fprintf(stderr, "%st = %.4f / %g s  %5.1f%%  %.1f steps/s  dt %.2e s  ETA %s%s",
-                   opt.progress_tty ? "\r" : "", t, c.time.end, 100.0 * t / c.time.end, sps, s.dt, hms(eta_s).c_str(),
-                   opt.progress_tty ? "   " : "\n");
-    }
+    return s.dt;
   }
-  if (opt.progress_tty && !quiet) std::fprintf(stderr, "\n");
-  if (!failure.empty()) {
-    // Outputs written so far are the last good state; nothing after it is written.
-    write_summary("diverged", 3, failure);
-    if (root)
+
+  [[nodiscard]] long steps() const override { return solver_.step_count(); }
+  [[nodiscard]] std::vector<std::string> gauge_names() const override { return gauges_.names(); }
+
+  std::vector<double> sample(double t) override {
+    (void)t;
+    dist_.sync();
+    std::vector<dem::Sphere> sp;
+    std::vector<Vec3> ff, fm;
+    if (cp_) {
+      sp = cp_->dem->spheres();
+      ff = cp_->dem->external_forces();
+      fm = cp_->dem->external_torques();
+    }
+    return gauges_.sample(
+        solver_,
+        [&](const GaugeSpec& g) {
+          return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, cp_->setup, *cp_->dem)
+                                              : sphere_gauge_value(g, sp, ff, fm, init_.origin);
+        },
+        dist_.distribution());
+  }
+
+  bool write_frame(int frame, double t, std::string& failure) override {
+    (void)failure; // a non-finite state has stopped the run before
+    dist_.sync();
+    solver_.refresh();
+    dist_.gather(host_, false);
+    char name[64];
+    std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
+    const bool quiet = opt_.quiet || !root();
+    if (root()) {
+      io::write_particles_vtp((out_ / "particles" / name).string(), host_, init_.origin, {Kind::Fluid});
+      fluid_pvd_.add(t, std::string("particles/") + name);
+      if (cp_) {
+        std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
+        io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
+        spheres_pvd_->add(t, std::string("particles/") + name);
+      }
+      const LeakCount in_walls = leaks_.count(host_, init_.origin);
+      tot_.leaks.add(in_walls, t);
+      if (in_walls.count > 0 && !quiet)
+        std::fprintf(stderr,
+                     "%st = %.4f s: %ld fluid particles inside walls (first: %s) within x [%.3f, %.3f], y [%.3f, "
+                     "%.3f], z [%.3f, %.3f] m\n",
+                     opt_.progress_tty ? "\n" : "", t, in_walls.count, in_walls.wall.c_str(), in_walls.lo.x,
+                     in_walls.hi.x, in_walls.lo.y, in_walls.hi.y, in_walls.lo.z, in_walls.hi.z);
+    }
+    const Totals& so = since_output_;
+    if (so.removed() > 0 && !quiet)
       std::fprintf(stderr,
-                   "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or a finer dp\n",
-                   failure.c_str(), frame > 0 ? (frame - 1) * c.time.output_every : 0.0, out.string().c_str());
-    return 3;
+                   "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
+                   "out of range, %ld non-finite) within x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m\n",
+                   opt_.progress_tty ? "\n" : "", t, so.removed(), so.removed_domain, so.removed_density, so.non_finite,
+                   so.lo.x, so.hi.x, so.lo.y, so.hi.y, so.lo.z, so.hi.z);
+    since_output_ = {};
+    return true;
   }
-  const bool interrupted = stop;
-  if (rows.size() > rows_written || interrupted) write_output();
-  write_summary(interrupted ? "interrupted" : "completed", interrupted ? 130 : 0,
-                interrupted ? "stopped by the user" : "");
-  if (!quiet) {
-    const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-    const double loop_wall = std::chrono::duration<double>(Clock::now() - loop0).count();
-    const double n = static_cast<double>(init.n_fluid + init.n_wall);
+
+  void save(io::Checkpoint& k) override {
+    k.removed_domain = tot_.removed_domain;
+    k.removed_density = tot_.removed_density;
+    k.non_finite = tot_.non_finite;
+    dist_.gather(k.particles, true);
+    if (cp_) k.dem_state = cp_->dem->save();
+  }
+
+  void restored(const std::vector<double>& frame_times) override {
+    std::vector<std::pair<double, std::string>> entries;
+    for (int k = 0; k < static_cast<int>(frame_times.size()); ++k) {
+      char name[64];
+      std::snprintf(name, sizeof name, "particles/fluid_%04d.vtp", k);
+      entries.emplace_back(frame_times[static_cast<std::size_t>(k)], name);
+    }
+    fluid_pvd_.restore(entries);
+    walls_pvd_.restore({{0.0, "particles/walls_0000.vtp"}});
+    if (cp_) {
+      for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
+      spheres_pvd_->restore(entries);
+    }
+  }
+
+  void write_summary(const std::string& status, int code, const std::string& msg, const LoopClock& k) override {
+    // Collective: every process takes part, rank 0 writes (RSS summed over processes).
+    const long n_now = dist_.owned_particles();
+    dist_.measure_waits();
+    const double rss = dist_.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
+    if (root())
+      io::write_file_atomic((out_ / "summary.json").string(),
+                            summary_json(c_, init_, extra_, status, code, k.steps, k.t, k.wall, k.loop_steps,
+                                         k.loop_wall, tot_, n_now, rss, dist_.summary_json(), msg));
+  }
+
+  void report_end(const std::string& status, const LoopClock& k) override {
+    const double n = static_cast<double>(init_.n_fluid + init_.n_wall);
     // Throughput over this invocation's own steps (after a restart, not the whole run's).
     std::fprintf(stderr,
                  "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid "
                  "particles removed\n  output in %s\n",
-                 interrupted ? "interrupted" : "done", solver.step_count(), t, wall,
-                 n * static_cast<double>(solver.step_count() - steps0) / loop_wall, init.n_fluid, init.n_wall,
-                 tot.removed(), out.string().c_str());
+                 status.c_str(), k.steps, k.t, k.wall, n * static_cast<double>(k.loop_steps) / k.loop_wall,
+                 init_.n_fluid, init_.n_wall, tot_.removed(), out_.string().c_str());
   }
-  return interrupted ? 130 : 0;
+
+  [[nodiscard]] bool root() const override { return DistributedRun::root(); }
+
+private:
+  static std::optional<CoupledParts> coupled_parts(const Case& c, sph::InitialState& init) {
+    std::optional<CoupledParts> cp;
+    if (c.coupled()) cp.emplace(c, init);
+    return cp;
+  }
+
+  void check_restart(const io::Checkpoint& ck) {
+    const std::string path = (out_ / "checkpoint.bin").string();
+    if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges_.names().size() + 1)
+      throw InputError(path, 0, "gauges",
+                       "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
+    if (ck.dem_state.empty() != !cp_)
+      throw InputError(path, 0, "dem",
+                       cp_ ? "the checkpoint holds no DEM spheres but the case has them; restart with the case.yaml "
+                             "of that run"
+                           : "the checkpoint holds DEM spheres but the case has none; restart with the case.yaml of "
+                             "that run");
+    if (!cp_) return;
+    try {
+      cp_->dem->restore(ck.dem_state);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(path, 0, "dem", std::string(e.what()) + "; restart with the case.yaml of that run");
+    }
+  }
+
+  const Case& c_;
+  const RunOptions& opt_;
+  sph::InitialState init_;
+  std::optional<CoupledParts> cp_;
+  const particles::HostParticles none_; // a distributed run's solver starts empty: each process uploads its slab
+  sph::WcsphSolver solver_;
+  sph::Gauges gauges_;
+  ExtraCounts extra_;
+  DistributedRun dist_; // built with MPI: slabs of particles, one per process
+  std::filesystem::path out_;
+  WallLeaks leaks_;
+  io::PvdCollection walls_pvd_, fluid_pvd_;
+  std::optional<io::PvdCollection> spheres_pvd_;
+  particles::HostParticles host_;
+  Totals tot_, since_output_;
+  double dt_min_, max_removed_;
+};
+
+} // namespace
+
+int run(const Case& c, const RunOptions& opt) {
+  // DEM-only cases are not distributed: rank 0 runs them.
+  if (c.dem.active() && !c.coupled()) return DistributedRun::root() ? run_dem(c, opt) : 0;
+  const auto wall0 = Clock::now();
+  std::optional<io::Checkpoint> ck;
+  if (opt.restart) ck = io::read_checkpoint((std::filesystem::path(opt.out_dir) / "checkpoint.bin").string());
+  SphStepper s(c, opt, ck ? &*ck : nullptr);
+  return run_loop(c, opt, s, ck ? &*ck : nullptr, wall0);
 }
 
 } // namespace surge::sim
