@@ -69,6 +69,11 @@ bool held(const sph::InitialState& init, const std::vector<std::size_t>& near, c
     sph::WallPlane w;
     Real d;
     if (sph::face_below(xb, init.boundary_ghost[b], r, reach.patch, w, d) && w.distance(x) < keep_off) return true;
+    for (int k = 0; k < (reach.extra < 0 ? 0 : reach.extra & 3); ++k)
+      if (sph::face_below(xb, init.extra_faces[static_cast<std::size_t>((reach.extra >> 2) + k)], r, reach.patch, w,
+                          d) &&
+          w.distance(x) < keep_off)
+        return true;
     if (norm(r) < reach.sphere) return true;
   }
   return false;
@@ -101,10 +106,11 @@ std::vector<Vec3> face_points(const Box& b, double dp, double out, bool inward, 
 
 // Every point of the walls' faces is held: water reaching it is kept off by some wall
 // particle's patch or sphere. SPHERIC test 2's box obstacle at dp = 3 cm and 1.83 cm is not
-// a whole number of spacings (its lattice is stretched 3-7 %); with a sphere of 0.75
-// spacings at its edges (the code before) strips of the faces 0.25 spacings wide beside each
-// edge, between the edge particles, were held by nothing, and water entered the box there
-// in the 3 cm mDBC run. Water at its natural distance (half a spacing) is never held.
+// a whole number of spacings (its lattice is stretched 3-7 %). With each edge particle
+// holding only the face it mirrors through (the code before), strips of the other faces a
+// quarter spacing wide beside each edge, between the edge particles, were held by nothing
+// (918 points at 3 cm), and water entered the box there in the 3 cm mDBC run. Water at its
+// natural distance (half a spacing) is never held, nor just beyond the faces' hold.
 TEST(NoPenetration, EveryPointOfTheWallFacesIsHeldAndWaterHalfASpacingOffIsFree) {
   for (const double dp : {0.03, 0.0183}) {
     const Box tank{{0, 0, 0}, {1.0, 1.0, 1.0}}, block{{0.6635, 0.2955, 0.0}, {0.8245, 0.6985, 0.161}};
@@ -136,8 +142,20 @@ TEST(NoPenetration, EveryPointOfTheWallFacesIsHeldAndWaterHalfASpacingOffIsFree)
     // nothing holds water there.
     for (const auto& x : face_points(block, dp, 0.45, false, false, true))
       if (x.z > 0.3 * dp) free_held += held(init, at_block, x, dpr);
+    // Just beyond the faces' own hold (dp/4), away from the edges (within a spacing of an
+    // edge a face's patch reaches a quarter spacing past it, inside the other face's
+    // hold): no sphere bulges out there to deflect the water running along the face.
+    long bulge = 0;
+    const Box inner{{block.min.x + 1.1 * dp, block.min.y + 1.1 * dp, block.min.z + 1.1 * dp},
+                    {block.max.x - 1.1 * dp, block.max.y - 1.1 * dp, block.max.z - 1.1 * dp}};
+    for (const auto& x : face_points(block, dp, 0.26, false, false, true)) {
+      int beside = 0; // coordinates within the face's inner part
+      for (int k = 0; k < 3; ++k) beside += x[k] > inner.min[k] && x[k] < inner.max[k];
+      if (beside == 2) bulge += held(init, at_block, x, dpr);
+    }
     EXPECT_EQ(bare, 0) << "dp = " << dp;
     EXPECT_EQ(free_held, 0) << "dp = " << dp;
+    EXPECT_EQ(bulge, 0) << "dp = " << dp;
   }
 }
 

@@ -177,24 +177,40 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p) {
   return s * 2.0 - p;
 }
 
-Reach wall_reach(const WallSpec& w, const Vec3d& p, double dp) {
-  if (w.is_mesh) return {0.75 * dp, 0.75 * dp};
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {
+  Reach r;
+  if (w.is_mesh) {
+    r.patch = r.sphere = 0.75 * dp;
+    return r;
+  }
   const Box& b = w.box;
   double s = w.solid ? 0.0 : dp; // a tank's layers lie dp apart across its faces
-  int faces = 0;                 // a solid box's faces this particle lies in the first layer of
+  for (int k = 0; k < 3; ++k) s = std::max(s, stretched_spacing(b.min[k], b.max[k], dp));
+  // 0.75 s: the patches of a face's particles overlap (a point of the face is at most
+  // s/sqrt(2) from the nearest one).
+  r.patch = 0.75 * s;
+  r.sphere = 0.75 * s;
+  if (!w.solid) return r;
+  // A solid box's particle in the first layer of two or three faces (an edge, a corner)
+  // mirrors through one of them; without the others the strips of those faces beside the
+  // edge, a quarter spacing wide, have no patch of their own and water enters there.
+  const Vec3d mirror = ghost_point(w, mesh, p) - p;
+  double nearest = 1e300;
   for (int k = 0; k < 3; ++k) {
     const double sk = stretched_spacing(b.min[k], b.max[k], dp);
-    s = std::max(s, sk);
-    if (w.solid)
-      for (const double f : {b.min[k], b.max[k]})
-        if (std::fabs(p[k] - f) < 0.5 * sk * (1 + 1e-6)) ++faces;
+    for (const double f : {b.min[k], b.max[k]}) {
+      const double d = std::fabs(p[k] - f);
+      nearest = std::min(nearest, d);
+      if (!(d < 0.5 * sk * (1 + 1e-6))) continue;
+      Vec3d o{};
+      o[k] = 2 * (f - p[k]);
+      if (norm(o - mirror) > 1e-9 * dp) r.faces.push_back(o);
+    }
   }
-  // 0.75 s: the patches of a face's particles overlap (a point of the face is at most
-  // s/sqrt(2) from the nearest one). At a solid box's edge or corner the particle mirrors
-  // through one face only, and the strips of the other faces next to the edge have no
-  // patch of their own: its sphere must reach past the edge line between it and its
-  // neighbour along the edge (sqrt(3)/2 s from it).
-  return {0.75 * s, faces >= 2 ? 0.9 * s : 0.75 * s};
+  // The sphere reaches dp/4 in front of the particle's face, never beyond the faces' own
+  // hold (a sphere bulging past it deflects the water running along the face).
+  r.sphere = std::min(r.sphere, nearest + 0.25 * dp);
+  return r;
 }
 
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {

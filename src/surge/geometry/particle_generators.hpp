@@ -25,11 +25,14 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
 Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // How far the wall particle at p holds water off under mDBC's no-penetration condition
 // (sph/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
-// its patch of face; `sphere`, the radius around it that water may not enter.
+// its patch of face; `sphere`, the radius around it that water may not enter; `faces`,
+// the ghost-style offsets (twice the way to the face) of the faces it holds besides the
+// one it mirrors through (a solid box's edge and corner particles: one or two more).
 struct Reach {
-  double patch, sphere;
+  double patch = 0, sphere = 0;
+  std::vector<Vec3d> faces;
 };
-Reach wall_reach(const WallSpec& w, const Vec3d& p, double dp);
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);

@@ -19,9 +19,12 @@
 namespace surge::sph {
 
 // How far one wall particle holds water off (geometry::wall_reach, from the wall lattice
-// around it): the half-width of its patch of face and the radius of its sphere.
+// around it): the half-width of its patch of face, the radius of its sphere, and the
+// faces it holds besides the one it mirrors through (a solid box's edges and corners):
+// `extra` = 4 * (index of the first in the extra-face offsets) + how many, or -1.
 struct WallReach {
   Real patch = 0, sphere = 0;
+  std::int32_t extra = -1;
 };
 
 // Where a kernel finds each boundary particle's ghost node, x_g = x_b + offset[id - first_id],
@@ -31,6 +34,7 @@ struct BoundaryGhosts {
   std::uint32_t first_id = 0;
   const Vec3* offset = nullptr;
   const WallReach* reach = nullptr;
+  const Vec3* extra_face = nullptr; // offsets of the faces in WallReach::extra
 };
 
 // A wall face near a fluid particle: the plane n.x = c, n pointing into the water. The

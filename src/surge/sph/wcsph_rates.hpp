@@ -83,6 +83,10 @@ struct Rates {
       const std::uint32_t b = p.id[j] - gh.first_id;
       const WallReach reach = gh.reach[b];
       if (face_below(p.pos[j], gh.offset[b], rij, reach.patch, w, d)) contact.consider(w, xi, vi, keep_off);
+      if (reach.extra >= 0)
+        for (int k = 0; k < (reach.extra & 3); ++k)
+          if (face_below(p.pos[j], gh.extra_face[(reach.extra >> 2) + k], rij, reach.patch, w, d))
+            contact.consider(w, xi, vi, keep_off);
       if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
     }
     if (fluid_i && fluid_j) {

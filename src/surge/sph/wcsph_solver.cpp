@@ -53,8 +53,13 @@ InitialState build_initial_state(const Case& c) {
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
       s.boundary_ghost.push_back(Vec3(geometry::ghost_point(ws, meshes[w].get(), p) - p));
-      const auto reach = geometry::wall_reach(ws, p, c.dp);
-      s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere)});
+      const auto reach = geometry::wall_reach(ws, meshes[w].get(), p, c.dp);
+      std::int32_t extra = -1;
+      if (!reach.faces.empty()) {
+        extra = static_cast<std::int32_t>(4 * s.extra_faces.size() + reach.faces.size());
+        for (const auto& o : reach.faces) s.extra_faces.push_back(Vec3(o));
+      }
+      s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra});
     }
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();
@@ -293,10 +298,12 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particle
   if (ghosts_.on) {
     par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
     par::upload(reach_, init.wall_reach);
+    par::upload(extra_faces_, init.extra_faces);
   }
   ghosts_.first_id = init.first_boundary_id;
   ghosts_.offset = ghost_.data();
   ghosts_.reach = reach_.data();
+  ghosts_.extra_face = extra_faces_.data();
   for (const auto& g : init.boundary_ghost) ghost_reach_ = std::fmax(ghost_reach_, static_cast<double>(norm(g)));
 }
 

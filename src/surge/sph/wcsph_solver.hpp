@@ -28,6 +28,7 @@ struct InitialState {
   std::uint32_t first_boundary_id = 0;
   std::vector<Vec3> boundary_ghost;
   std::vector<WallReach> wall_reach; // per wall particle (id - first_boundary_id < n_wall)
+  std::vector<Vec3> extra_faces;     // the faces of WallReach::extra
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
@@ -88,7 +89,7 @@ public:
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
-    return store_.bytes() + grid_.bytes() + ghost_.bytes() + reach_.bytes() + faces_.bytes();
+    return store_.bytes() + grid_.bytes() + ghost_.bytes() + reach_.bytes() + extra_faces_.bytes() + faces_.bytes();
   }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
@@ -110,8 +111,9 @@ private:
   WcsphParams prm_;
   BoundaryGhosts ghosts_; // on with sph.boundary: mdbc
   par::Buffer<Vec3> ghost_;
-  par::Buffer<WallReach> reach_; // mdbc: 8 B per wall particle
-  par::Buffer<WallPlane> faces_; // mdbc: each particle's nearest wall face, from the last rates (16 B)
+  par::Buffer<WallReach> reach_;  // mdbc: 12 B per wall particle
+  par::Buffer<Vec3> extra_faces_; // mdbc: 12 B per extra face of an edge or corner particle
+  par::Buffer<WallPlane> faces_;  // mdbc: each particle's nearest wall face, from the last rates (16 B)
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{};
