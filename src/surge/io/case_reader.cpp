@@ -565,7 +565,9 @@ void reject_duplicate_keys(const YAML::Node& n, const std::string& file, const s
     for (const auto& kv : n) {
       const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
       const int line = kv.first.Mark().is_null() ? 0 : kv.first.Mark().line + 1;
-      const std::string full = path.empty() ? key : path + "." + key;
+      std::string full = path;
+      if (!full.empty()) full += ".";
+      full += key;
       const auto [it, fresh] = seen.emplace(key, line);
       if (!fresh)
         throw InputError(file, line, full,

@@ -191,8 +191,12 @@ void ParticleStore::remove(const std::vector<std::uint32_t>& idx) {
   const std::uint32_t* k = idx_.data();
   std::uint8_t* kind = kind_.data();
   const auto removed = static_cast<std::uint8_t>(Kind::Removed);
+  const int n = static_cast<int>(idx.size());
+  // upload filled k[0, n) (clang-tidy's analyzer loses the copy and calls k[j] undefined)
   par::parallel_for(
-      static_cast<int>(idx.size()), SURGE_LAMBDA(int j) { kind[k[j]] = removed; });
+      n, SURGE_LAMBDA(int j) {
+        kind[k[j]] = removed; // NOLINT(clang-analyzer-core.uninitialized.ArraySubscript)
+      });
   add_removed(static_cast<int>(idx.size()));
 }
 

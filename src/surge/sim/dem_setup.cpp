@@ -22,6 +22,7 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(Real(0.7));
   std::vector<dem::Sphere> spheres;
+  spheres.reserve(list.size());
   for (const auto& sp : list)
     spheres.push_back({Vec3(sp.centre - s.origin), Vec3{}, Vec3{}, static_cast<Real>(sp.radius), pk.material, false});
   solver.set_spheres(spheres);

@@ -64,13 +64,14 @@ void DistributedRun::sync() {
     b.threshold = rebalance_threshold;
     if (balance_checked_)
       b.busy_seconds = std::max(1e-9, std::chrono::duration<double>(now - last_check_).count() - (coll - last_coll_));
-    s = slabs_->exchange(solver_.exchange_store(), &b);
+    s = slabs_->exchange(solver_.store(), &b);
     balance_checked_ = true;
     last_check_ = std::chrono::steady_clock::now();
     last_coll_ = domain::comm::collective_seconds();
   } else {
-    s = slabs_->exchange(solver_.exchange_store());
+    s = slabs_->exchange(solver_.store());
   }
+  solver_.invalidate(); // particles came and went: rates are recomputed before they are read
   ++traffic_.exchanges;
   if (s.rebalanced) ++traffic_.rebalances;
   traffic_.bytes_sent += static_cast<double>(s.bytes_sent);

@@ -73,11 +73,8 @@ public:
   // it owns advances them exactly as one process would.
   [[nodiscard]] double dependency_reach() const;
   // The store, for a distributed run's halo exchange (domain::SlabDecomposition), which
-  // adds and removes particles: rates are recomputed before they are read again.
-  particles::ParticleStore& exchange_store() {
-    fresh_ = false;
-    return store_;
-  }
+  // adds and removes particles: call invalidate() after changing it.
+  particles::ParticleStore& store() { return store_; }
   // Replaces the particles (a distributed run's start); the step count is kept.
   void replace(const particles::HostParticles& h);
   // Particles this process owns (all of them unless distributed).
@@ -98,7 +95,7 @@ public:
   void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
   void refresh();
-  // Positions were changed from outside (body particles moved): rates must be recomputed.
+  // Particles were changed from outside (body particles moved, a halo exchange): rates must be recomputed.
   void invalidate() { fresh_ = false; }
 
 private:
