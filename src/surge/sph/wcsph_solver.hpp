@@ -6,6 +6,7 @@
 #include "surge/par/phase_timer.hpp"
 #include "surge/particles/particle_store.hpp"
 #include "surge/sph/boundary_mdbc.hpp"
+#include "surge/sph/initial_state.hpp"
 #include "surge/sph/wcsph_rates.hpp"
 
 #include <cstdint>
@@ -13,36 +14,6 @@
 #include <vector>
 
 namespace surge::sph {
-
-// The particles a case starts with, in local coordinates (absolute - origin).
-struct InitialState {
-  particles::HostParticles particles;
-  Vec3d origin{}; // case domain.min; local = absolute - origin
-  std::size_t n_fluid = 0, n_wall = 0;
-  // Wall particle ids of each case wall: [first, last) (ids are assigned in order).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> wall_ids;
-  std::size_t fluid_dropped_by_walls = 0;
-  double fluid_volume_asked = 0; // sum of the fluid boxes' volumes (n_fluid dp^3 is what was placed)
-  // Ghost nodes of the boundary (wall, then body) particles for sph.boundary: mdbc, as
-  // ghost - position, indexed by id - first_boundary_id (fluid ids come first).
-  std::uint32_t first_boundary_id = 0;
-  std::vector<Vec3> boundary_ghost;
-  std::vector<WallReach> wall_reach; // per wall particle (id - first_boundary_id < n_wall)
-  std::vector<Vec3> extra_faces;     // the faces of WallReach::extra
-};
-
-// Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
-// with sph.hydrostatic_init, rho0 otherwise (the start of every fluid and submerged
-// body particle).
-[[nodiscard]] Real still_water_density(const Case& c, const TaitEos& eos, const FluidRegion& f, const Vec3d& p);
-
-// Builds fluid and wall particles from the case (meshes are read here).
-InitialState build_initial_state(const Case& c);
-
-// Where fluid may be (local coordinates): the case's domain, grown to hold every wall
-// particle's cell. Fluid beyond it is removed as having left the domain; fluid that went
-// into a wall's layers stays and is counted as a leak (sim::WallLeaks), not deleted.
-[[nodiscard]] std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init);
 
 struct StepStats {
   double dt = 0;
