@@ -4,7 +4,7 @@
 # validation tests (dam-break front against Koshizuka & Oka, the coupled cases) carry the
 # ctest label "validation": `ctest --preset cpu-ci -L validation`, or scripts/test.sh --all.
 # Tests labelled "open" are acceptance tests of open issues that do not pass yet
-# (tests/CMakeLists.txt says why): `ctest --preset cpu-ci -L open`.
+# (tests/CMakeLists.txt says why; none today): `ctest --preset cpu-ci -L open`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
