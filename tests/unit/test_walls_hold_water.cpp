@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 
 using namespace surge;
 
@@ -102,7 +105,71 @@ std::vector<Vec3> face_points(const Box& b, double dp, double out, bool inward, 
   return pts;
 }
 
+// A closed box as an STL mesh (12 triangles, normals outward).
+std::string write_box_stl(const Box& b, const std::string& name) {
+  const auto path = std::filesystem::temp_directory_path() / (name + std::to_string(::getpid()) + ".stl");
+  std::ofstream f(path);
+  f << "solid box\n";
+  for (int k = 0; k < 3; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int a = (k + 1) % 3, c = (k + 2) % 3;
+      auto corner = [&](int i, int j) {
+        Vec3d p;
+        p[k] = side ? b.max[k] : b.min[k];
+        p[a] = i ? b.max[a] : b.min[a];
+        p[c] = j ? b.max[c] : b.min[c];
+        return p;
+      };
+      // (a, c, k) is right-handed: corners in the order 00, 10, 11, 01 turn about +k.
+      Vec3d q[4] = {corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1)};
+      if (side == 0) std::swap(q[1], q[3]);
+      Vec3d n{};
+      n[k] = side ? 1 : -1;
+      for (const int t : {0, 1}) {
+        const Vec3d& v1 = q[0];
+        const Vec3d& v2 = q[1 + t];
+        const Vec3d& v3 = q[2 + t];
+        f << " facet normal " << n.x << " " << n.y << " " << n.z << "\n  outer loop\n";
+        for (const Vec3d* v : {&v1, &v2, &v3}) f << "   vertex " << v->x << " " << v->y << " " << v->z << "\n";
+        f << "  endloop\n endfacet\n";
+      }
+    }
+  f << "endsolid box\n";
+  return path.string();
+}
+
 } // namespace
+
+// The same box as a solid STL mesh (its wall particles on the case's lattice, not fitted
+// to the box): every point of its faces, edges included, should be held. Open (disabled;
+// run with --gtest_also_run_disabled_tests): a mesh's first layer lies up to a spacing
+// behind its faces, so the last particles before a convex edge can be nearly a spacing
+// from it and their patches (0.75 dp) fall short: 1,312 of 18,128 points, in strips up to
+// a quarter spacing wide along the edges, are held by nothing (5,338 before the mesh's
+// particles held every face within a spacing of them). Wider patches would hold water off
+// the extension of the face beyond the edge (a ledge water flowing over the edge meets).
+// No shipped case has a convex mesh edge in the water.
+TEST(NoPenetration, DISABLED_EveryPointOfASolidMeshBoxIsHeld) {
+  const double dp = 0.03;
+  const Box block{{0.6635, 0.2955, 0.0}, {0.8245, 0.6985, 0.161}};
+  const std::string stl = write_box_stl(block, "surge_block_");
+  const Case c =
+      io::read_case_text("name: cover\ndp: 0.03\nsph: {boundary: mdbc}\ndomain: {min: [0,0,0], max: [1,1,1]}\n"
+                         "fluid: [{box: {min: [0.1,0.1,0.3], max: [0.3,0.3,0.5]}}]\n"
+                         "walls: [{name: block, mesh: " +
+                             stl + ", solid: true}]\n",
+                         "cover.yaml");
+  const auto init = sph::build_initial_state(c);
+  std::vector<std::size_t> all(init.wall_reach.size());
+  for (std::size_t b = 0; b < all.size(); ++b) all[b] = b;
+  long bare = 0, n = 0;
+  for (const auto& x : face_points(block, dp, 1e-3, false, false, true)) {
+    bare += !held(init, all, x, static_cast<Real>(dp));
+    ++n;
+  }
+  EXPECT_EQ(bare, 0) << "of " << n;
+  std::filesystem::remove(stl);
+}
 
 // Every point of the walls' faces is held: water reaching it is kept off by some wall
 // particle's patch or sphere. SPHERIC test 2's box obstacle at dp = 3 cm and 1.83 cm is not

@@ -181,6 +181,21 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp)
   Reach r;
   if (w.is_mesh) {
     r.patch = r.sphere = 0.75 * dp;
+    // Near a convex edge the particle mirrors through its closest point (on the edge,
+    // diagonally) or through one face; it also holds each other face whose triangles
+    // lie within a spacing of it (its first layer; up to three faces, coplanar triangles
+    // once).
+    const Vec3d mirror = ghost_point(w, mesh, p) - p;
+    const Vec3d mirror_dir = norm(mirror) > 0 ? mirror * (1 / norm(mirror)) : Vec3d{};
+    for (const auto& t : mesh->tris) {
+      const Vec3d n = t.normal();
+      const double behind = dot(t.a - p, n); // > 0: p behind the triangle's plane
+      if (!(behind > 0) || norm(closest_point(t, p) - p) >= dp) continue;
+      const Vec3d o = n * (2 * behind);
+      bool known = norm(n - mirror_dir) < 1e-6;
+      for (const auto& f : r.faces) known = known || norm(f - o) < 1e-9 * dp;
+      if (!known && r.faces.size() < 3) r.faces.push_back(o);
+    }
     return r;
   }
   const Box& b = w.box;
