@@ -76,7 +76,7 @@ std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred) {
   return pts;
 }
 
-std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
+std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers, bool fit) {
   std::vector<Vec3d> pts;
   const Box& b = w.box;
   if (w.solid) {
@@ -85,8 +85,8 @@ std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers) {
     // number of spacings otherwise kept its far faces up to 1.5 dp in front of the wall
     // particles, a strip water could enter before any wall particle stopped it.
     const double band = layers * dp;
-    const auto xs = lattice_stretched(b.min.x, b.max.x, dp), ys = lattice_stretched(b.min.y, b.max.y, dp),
-               zs = lattice_stretched(b.min.z, b.max.z, dp);
+    const auto axis = fit ? lattice_stretched : lattice;
+    const auto xs = axis(b.min.x, b.max.x, dp), ys = axis(b.min.y, b.max.y, dp), zs = axis(b.min.z, b.max.z, dp);
     for (double z : zs)
       for (double y : ys)
         for (double x : xs) {

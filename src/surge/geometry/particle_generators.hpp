@@ -15,8 +15,10 @@ int wall_layers(const Case& c);
 // Lattice points (i + 1/2) dp inside the box.
 std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred = false);
 // Layers of thickness `layers` dp around a tank box (outside it, faces in `open` left out),
-// or inside it when `solid`.
-std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers);
+// or inside it when `solid`: with `fit`, on a lattice stretched to fit the solid box (each
+// face half a spacing in front of its first layer, as mDBC's no-penetration condition
+// needs), else on the lattice (i + 1/2) dp from its lowest corner.
+std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers, bool fit = true);
 // Lattice points (aligned to `origin` + (i + 1/2) dp) behind the mesh surface
 // (the side its normals point away from) within layers * dp of it.
 std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers);
