@@ -177,7 +177,7 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p) {
   return s * 2.0 - p;
 }
 
-Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp) {
   Reach r;
   if (w.is_mesh) {
     r.patch = r.sphere = 0.75 * dp;
@@ -185,7 +185,6 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp)
     // diagonally) or through one face; it also holds each other face whose triangles
     // lie within a spacing of it (its first layer; up to three faces, coplanar triangles
     // once).
-    const Vec3d mirror = ghost_point(w, mesh, p) - p;
     const Vec3d mirror_dir = norm(mirror) > 0 ? mirror * (1 / norm(mirror)) : Vec3d{};
     for (const auto& t : mesh->tris) {
       const Vec3d n = t.normal();
@@ -209,7 +208,6 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp)
   // A solid box's particle in the first layer of two or three faces (an edge, a corner)
   // mirrors through one of them; without the others the strips of those faces beside the
   // edge, a quarter spacing wide, have no patch of their own and water enters there.
-  const Vec3d mirror = ghost_point(w, mesh, p) - p;
   double nearest = 1e300;
   for (int k = 0; k < 3; ++k) {
     const double sk = stretched_spacing(b.min[k], b.max[k], dp);

@@ -34,7 +34,8 @@ struct Reach {
   double patch = 0, sphere = 0;
   std::vector<Vec3d> faces;
 };
-Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
+// `mirror`: the particle's ghost offset, ghost_point(w, mesh, p) - p.
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);

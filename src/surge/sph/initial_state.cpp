@@ -53,8 +53,9 @@ InitialState build_initial_state(const Case& c) {
     const std::uint32_t first = next_id;
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
-      s.boundary_ghost.push_back(Vec3(geometry::ghost_point(ws, meshes[w].get(), p) - p));
-      const auto reach = geometry::wall_reach(ws, meshes[w].get(), p, c.dp);
+      const Vec3d mirror = geometry::ghost_point(ws, meshes[w].get(), p) - p;
+      s.boundary_ghost.push_back(Vec3(mirror));
+      const auto reach = geometry::wall_reach(ws, meshes[w].get(), p, mirror, c.dp);
       std::int32_t extra = -1;
       if (!reach.faces.empty()) {
         extra = static_cast<std::int32_t>(4 * s.extra_faces.size() + reach.faces.size());
