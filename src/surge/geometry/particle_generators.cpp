@@ -177,10 +177,13 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p) {
   return s * 2.0 - p;
 }
 
-Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp) {
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp, bool fit) {
   Reach r;
   if (w.is_mesh) {
-    r.patch = r.sphere = 0.75 * dp;
+    // The sphere reaches dp/4 in front of the particle's face and no further, as a box's
+    // (a lattice point just behind the surface otherwise bulged 0.7 dp out of it).
+    r.patch = 0.75 * dp;
+    r.sphere = std::min(0.75 * dp, 0.5 * norm(mirror) + 0.25 * dp);
     // Near a convex edge the particle mirrors through its closest point (on the edge,
     // diagonally) or through one face; it also holds each other face whose triangles
     // lie within a spacing of it (its first layer; up to three faces, coplanar triangles
@@ -198,8 +201,11 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
     return r;
   }
   const Box& b = w.box;
-  double s = w.solid ? 0.0 : dp; // a tank's layers lie dp apart across its faces
-  for (int k = 0; k < 3; ++k) s = std::max(s, stretched_spacing(b.min[k], b.max[k], dp));
+  // The spacing of the lattice laid in the box: stretched to fit it, or dp (a solid box of
+  // the dynamic boundary, box_wall's `fit` off); a tank's layers lie dp apart across its faces.
+  auto spacing = [&](int k) { return fit ? stretched_spacing(b.min[k], b.max[k], dp) : dp; };
+  double s = w.solid ? 0.0 : dp;
+  for (int k = 0; k < 3; ++k) s = std::max(s, spacing(k));
   // 0.75 s: the patches of a face's particles overlap (a point of the face is at most
   // s/sqrt(2) from the nearest one).
   r.patch = 0.75 * s;
@@ -207,19 +213,37 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
   if (!w.solid) return r;
   // A solid box's particle in the first layer of two or three faces (an edge, a corner)
   // mirrors through one of them; without the others the strips of those faces beside the
-  // edge, a quarter spacing wide, have no patch of their own and water enters there.
+  // edge, a quarter spacing wide, have no patch of their own and water enters there. The
+  // first layer is the lattice coordinate nearest the face: half a spacing behind it on a
+  // fitted lattice, between half and one and a half on the case's (at the box's far faces).
   double nearest = 1e300;
+  double held[3] = {0, 0, 0}; // distance to the face of each axis whose first layer p is in (0: none)
   for (int k = 0; k < 3; ++k) {
-    const double sk = stretched_spacing(b.min[k], b.max[k], dp);
+    const auto coords = fit ? lattice_stretched(b.min[k], b.max[k], dp) : lattice(b.min[k], b.max[k], dp);
     for (const double f : {b.min[k], b.max[k]}) {
       const double d = std::fabs(p[k] - f);
       nearest = std::min(nearest, d);
-      if (!(d < 0.5 * sk * (1 + 1e-6))) continue;
+      double first = 1e300;
+      for (const double x : coords) first = std::min(first, std::fabs(x - f));
+      if (!(d < first + 1e-6 * dp)) continue;
+      held[k] = d;
       Vec3d o{};
       o[k] = 2 * (f - p[k]);
       if (norm(o - mirror) > 1e-9 * dp) r.faces.push_back(o);
     }
   }
+  // Each face it holds is held out to its edges with the others: on the case's lattice the
+  // far faces' first layer lies up to 1.5 spacings behind them, and the strip of a face
+  // between that layer's point of it and the edge (or the corner) is wider than 0.75 s.
+  // On a fitted lattice the edge lies 0.5 s away and the corner 0.71 s: no wider patch.
+  double wide = 0;
+  for (int k = 0; k < 3; ++k)
+    if (held[k] > 0) {
+      auto extent = [&](int a) { return held[a] > 0 ? held[a] : 0.5 * spacing(a); };
+      const double a = extent((k + 1) % 3), c = extent((k + 2) % 3);
+      wide = std::max(wide, std::sqrt(a * a + c * c) * (1 + 1e-6));
+    }
+  if (wide > r.patch) r.wide = wide;
   // The sphere reaches dp/4 in front of the particle's face, never beyond the faces' own
   // hold (a sphere bulging past it deflects the water running along the face).
   r.sphere = std::min(r.sphere, nearest + 0.25 * dp);

@@ -25,17 +25,20 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
 // The ghost node of a wall particle at p (modified dynamic boundary): p mirrored through
 // the closest point of the wall's surface, into the fluid side.
 Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
-// How far the wall particle at p holds water off under mDBC's no-penetration condition
+// How far the wall particle at p holds water off under the no-penetration condition
 // (sph/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
 // its patch of face; `sphere`, the radius around it that water may not enter; `faces`,
 // the ghost-style offsets (twice the way to the face) of the faces it holds besides the
-// one it mirrors through (a solid box's edge and corner particles: one or two more).
+// one it mirrors through (a solid box's edge and corner particles: one or two more);
+// `wide`, the patch out to those faces' edges where it is wider than `patch` (a solid
+// box's far edges on the case's lattice), else 0.
 struct Reach {
-  double patch = 0, sphere = 0;
+  double patch = 0, sphere = 0, wide = 0;
   std::vector<Vec3d> faces;
 };
-// `mirror`: the particle's ghost offset, ghost_point(w, mesh, p) - p.
-Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp);
+// `mirror`: the particle's ghost offset, ghost_point(w, mesh, p) - p; `fit`: as given to
+// box_wall (the solid box's lattice stretched to fit it).
+Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp, bool fit);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
 // behind or within dp/2 of a mesh surface).
 bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);

@@ -103,6 +103,13 @@ const std::vector<Field<SphConfig>>& sph_fields() {
        {},
        {"dynamic", "mdbc"},
        "wall model: dynamic (the paper's, a gap of about h) or mdbc (modified dynamic, no gap)"},
+      {"no_penetration",
+       &S::no_penetration,
+       "",
+       {},
+       {},
+       "keep water a quarter spacing in front of every wall face, with either wall model, so that impacts cannot push "
+       "it through a wall"},
       {"euler_every", &S::euler_every, "steps", at_least(1), {}, "Verlet: an Euler step every this many steps"},
       {"rho_min",
        &S::rho_min,

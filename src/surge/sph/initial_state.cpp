@@ -45,23 +45,25 @@ InitialState build_initial_state(const Case& c) {
   s.first_boundary_id = next_id;
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];
+    // The dynamic boundary keeps the solid box's unstretched lattice: with the stretched one
+    // SPHERIC at 3 cm lost 193 particles for density at 0.95-1.0 s (none before,
+    // docs/validation.md).
+    const bool fit = c.sph.boundary == "mdbc";
     const auto pts = ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers)
-                                // The dynamic boundary keeps the solid box's unstretched lattice: with the
-                                // stretched one SPHERIC at 3 cm lost 193 particles for density at 0.95-1.0 s
-                                // (none before, docs/validation.md).
-                                : geometry::box_wall(ws, c.dp, layers, c.sph.boundary == "mdbc");
+                                : geometry::box_wall(ws, c.dp, layers, fit);
     const std::uint32_t first = next_id;
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
       const Vec3d mirror = geometry::ghost_point(ws, meshes[w].get(), p) - p;
       s.boundary_ghost.push_back(Vec3(mirror));
-      const auto reach = geometry::wall_reach(ws, meshes[w].get(), p, mirror, c.dp);
+      const auto reach = geometry::wall_reach(ws, meshes[w].get(), p, mirror, c.dp, fit);
       std::int32_t extra = -1;
       if (!reach.faces.empty()) {
         extra = static_cast<std::int32_t>(4 * s.extra_faces.size() + reach.faces.size());
         for (const auto& o : reach.faces) s.extra_faces.push_back(Vec3(o));
       }
-      s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra});
+      s.wall_reach.push_back(
+          {static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra, static_cast<Real>(reach.wide)});
     }
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();

@@ -1,5 +1,6 @@
-// No penetration through walls with mDBC (a kinematic safety net, after DualSPHysics's
-// mDBC "no penetration" variant, in surge's own geometric form).
+// No penetration through walls (a kinematic safety net, after DualSPHysics's mDBC "no
+// penetration" variant, in surge's own geometric form), with either wall model
+// (sph.no_penetration, on by default).
 //
 // With mDBC the water sits half a spacing from each wall face, and a wall particle's
 // pressure is the fluid's at its ghost node. Where the fluid there is a thin sheet with a
@@ -12,7 +13,10 @@
 // least a quarter spacing in front of it (one face per step suffices: a step moves water
 // far less than dp/4, so the face it approaches next is the one taken next step): the part of its motion that
 // would take it closer is removed (an inelastic normal impact on the wall; the tangential
-// motion is kept). Water at its natural distance (dp/2) never feels it.
+// motion is kept). Water at its natural distance (dp/2) never feels it. The dynamic
+// boundary holds water about a spacing off by its pressure, but where spheres of a slide
+// squeeze water against the floor a few particles were pushed up to 2 mm into it (the
+// shortened slide at dp = 2.5 cm, docs/validation.md): the same planes hold them there.
 #pragma once
 #include "surge/core/types.hpp"
 
@@ -22,15 +26,20 @@ namespace surge::sph {
 // around it): the half-width of its patch of face, the radius of its sphere, and the
 // faces it holds besides the one it mirrors through (a solid box's edges and corners):
 // `extra` = 4 * (index of the first in the extra-face offsets) + how many, or -1.
+// `wide` (0: none): a patch widened to reach the edges of the faces it holds (a solid
+// box's far edges on the case's lattice, whose first layer lies up to 1.5 spacings behind
+// them), which holds only where the fluid particle is in front of no other face of the
+// particle (past an edge, the other face's hold is what counts).
 struct WallReach {
   Real patch = 0, sphere = 0;
   std::int32_t extra = -1;
+  Real wide = 0;
 };
 
 // Where a kernel finds each boundary particle's ghost node, x_g = x_b + offset[id - first_id],
 // and each wall particle's reach (reach[id - first_id]; wall ids come before body ids).
 struct BoundaryGhosts {
-  bool on = false;
+  bool hold = false; // the no-penetration condition is on: fluid notes the wall plane it would reach first
   std::uint32_t first_id = 0;
   const Vec3* offset = nullptr;
   const WallReach* reach = nullptr;
@@ -64,6 +73,35 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
   out = WallPlane{n, dot(n, xb + o * Real(0.5))};
   dist = d;
   return true;
+}
+
+// Calls f(plane) for each face wall particle b (at xb, ghost offset `own`, reach `reach`,
+// extra-face offsets `extra`) holds the fluid particle at xb + r off: its own face, then
+// its extra ones, each where face_below finds the particle in front of it within the
+// patch, or within the wide patch and in front of none of b's other faces.
+template <class F>
+SURGE_HD void for_each_held_face(const Vec3& xb, const Vec3& r, const WallReach& reach, const Vec3& own,
+                                 const Vec3* extra, F&& f) {
+  Vec3 o[4];
+  int n = 0;
+  o[n++] = own;
+  if (reach.extra >= 0)
+    for (int k = 0; k < (reach.extra & 3); ++k) o[n++] = extra[(reach.extra >> 2) + k];
+  for (int a = 0; a < n; ++a) {
+    WallPlane w;
+    Real d;
+    if (face_below(xb, o[a], r, reach.patch, w, d)) {
+      f(w);
+      continue;
+    }
+    if (!(reach.wide > reach.patch) || !face_below(xb, o[a], r, reach.wide, w, d)) continue;
+    // Past another face: more than 1e-3 of its offset (a few thousandths of a spacing,
+    // above float rounding) in front of it, not on its plane.
+    bool past_edge = false;
+    for (int c = 0; c < n; ++c)
+      if (c != a) past_edge = past_edge || dot(r - o[c] * Real(0.5), o[c]) > Real(1e-3) * dot(o[c], o[c]);
+    if (!past_edge) f(w);
+  }
 }
 
 // How far in front of a wall face fluid is kept.

@@ -40,11 +40,11 @@ struct Rates {
   Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;
   Real vsig = 0;
-  WallPlane wall; // fluid with mDBC: the wall face or particle it would reach first (no_penetration.hpp)
+  WallPlane wall; // fluid, with no penetration: the wall face or particle it would reach first (no_penetration.hpp)
 };
 
-// `gh`: with mDBC, the wall particles' ghost offsets, from which each fluid particle finds
-// the wall face nearest below it.
+// `gh`: with the no-penetration condition, the wall particles' ghost offsets and reach,
+// from which each fluid particle finds the wall face or particle it would reach first.
 [[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
                                                 const particles::ParticleView& p, int i,
                                                 const BoundaryGhosts& gh = {}) {
@@ -59,7 +59,7 @@ struct Rates {
   const Real c0 = prm.eos.c0;
   Real drho = 0, diff = 0, vsig = 0;
   Vec3 acc{};
-  FirstContact contact; // mDBC: the wall face or wall particle this fluid particle would reach first
+  FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
   const auto wall = static_cast<std::uint8_t>(Kind::Wall);
   // One pair term; boundary particles (fluid_i false) only ever see fluid j.
@@ -77,16 +77,11 @@ struct Rates {
     const Real mu = h * vr * inv_r2e;
     const Real amu = mu < 0 ? -mu : mu;
     vsig = amu > vsig ? amu : vsig;
-    if (fluid_i && gh.on && p.kind[j] == wall) {
-      WallPlane w;
-      Real d;
+    if (fluid_i && gh.hold && p.kind[j] == wall) {
       const std::uint32_t b = p.id[j] - gh.first_id;
       const WallReach reach = gh.reach[b];
-      if (face_below(p.pos[j], gh.offset[b], rij, reach.patch, w, d)) contact.consider(w, xi, vi, keep_off);
-      if (reach.extra >= 0)
-        for (int k = 0; k < (reach.extra & 3); ++k)
-          if (face_below(p.pos[j], gh.extra_face[(reach.extra >> 2) + k], rij, reach.patch, w, d))
-            contact.consider(w, xi, vi, keep_off);
+      for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face,
+                         [&](const WallPlane& w) { contact.consider(w, xi, vi, keep_off); });
       if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
     }
     if (fluid_i && fluid_j) {

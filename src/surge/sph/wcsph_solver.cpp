@@ -24,8 +24,8 @@ void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const 
       });
 }
 
-// EOS then per-particle rates (continuity, momentum, signal speed); with mDBC (`faces`
-// not null) each particle's nearest wall face below it.
+// EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
+// condition (`faces` not null) the wall plane each fluid particle would reach first.
 void compute_rates(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
                    const particles::ParticleView& p, WallPlane* faces) {
   par::parallel_for(
@@ -85,8 +85,8 @@ long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real
 }
 
 // Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
-// an Euler step when `euler`. Boundary densities are clamped at rho0. With `faces` (mDBC)
-// fluid is kept `dmin` in front of its nearest wall face (no_penetration.hpp).
+// an Euler step when `euler`. Boundary densities are clamped at rho0. With `faces` (no
+// penetration) fluid is kept `dmin` in front of its nearest wall face (no_penetration.hpp).
 void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const WallPlane* faces,
                    Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
@@ -214,9 +214,10 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particle
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(held ? *held : init.particles);
-  ghosts_.on = c.sph.boundary == "mdbc";
-  if (ghosts_.on) {
-    par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle, mdbc only
+  mdbc_ = c.sph.boundary == "mdbc";
+  ghosts_.hold = c.sph.no_penetration;
+  if (mdbc_ || ghosts_.hold) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle
+  if (ghosts_.hold) {
     par::upload(reach_, init.wall_reach);
     par::upload(extra_faces_, init.extra_faces);
   }
@@ -234,7 +235,7 @@ void WcsphSolver::set_distribution(const Distribution& d) {
 
 double WcsphSolver::dependency_reach() const {
   const double support = prm_.kernel.support();
-  const double per_evaluation = support + (ghosts_.on ? ghost_reach_ + support : 0.0);
+  const double per_evaluation = support + (mdbc_ ? ghost_reach_ + support : 0.0);
   return (symplectic_ ? 2 : 1) * per_evaluation;
 }
 
@@ -263,13 +264,13 @@ void WcsphSolver::sort_and_rates() {
 void WcsphSolver::rates() {
   const auto p = store_.view();
   const auto g = grid_.view(p.pos);
-  if (ghosts_.on) {
+  if (mdbc_) {
     const auto t = par::timed(par::Phase::Boundary);
     detail::boundary_densities(prm_, ghosts_, g, p);
-    faces_.resize(static_cast<std::size_t>(p.n));
   }
+  if (ghosts_.hold) faces_.resize(static_cast<std::size_t>(p.n));
   const auto t = par::timed(par::Phase::Rates);
-  detail::compute_rates(prm_, ghosts_, g, p, ghosts_.on ? faces_.data() : nullptr);
+  detail::compute_rates(prm_, ghosts_, g, p, ghosts_.hold ? faces_.data() : nullptr);
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
@@ -317,7 +318,7 @@ StepStats WcsphSolver::step(double dt_max) {
   const Real rho0 = prm_.eos.rho0;
   if (symplectic_) store_.reserve_position_scratch();
   const auto p = store_.view();
-  const WallPlane* faces = ghosts_.on ? faces_.data() : nullptr;
+  const WallPlane* faces = ghosts_.hold ? faces_.data() : nullptr;
   const Real dmin = keep_off_distance(prm_.dp);
   if (!symplectic_) {
     const auto t = par::timed(par::Phase::Integrate);

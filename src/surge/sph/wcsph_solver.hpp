@@ -51,8 +51,9 @@ public:
   // Particles this process owns (all of them unless distributed).
   [[nodiscard]] int owned_count();
   // Ghost offsets of the boundary particles (execution space), by id - first_boundary_id():
-  // the coupling rewrites those of body particles as their spheres turn. Null unless mdbc.
-  [[nodiscard]] Vec3* ghost_offsets() { return ghost_.data(); }
+  // the coupling rewrites those of body particles as their spheres turn. Null unless mdbc
+  // (the no-penetration condition alone reads the wall particles' offsets only).
+  [[nodiscard]] Vec3* ghost_offsets() { return mdbc_ ? ghost_.data() : nullptr; }
   [[nodiscard]] std::uint32_t first_boundary_id() const { return ghosts_.first_id; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
@@ -77,11 +78,12 @@ private:
 
   Case case_;
   WcsphParams prm_;
-  BoundaryGhosts ghosts_; // on with sph.boundary: mdbc
-  par::Buffer<Vec3> ghost_;
-  par::Buffer<WallReach> reach_;  // mdbc: 12 B per wall particle
-  par::Buffer<Vec3> extra_faces_; // mdbc: 12 B per extra face of an edge or corner particle
-  par::Buffer<WallPlane> faces_;  // mdbc: each particle's nearest wall face, from the last rates (16 B)
+  bool mdbc_ = false;             // sph.boundary: mdbc (boundary densities from the ghost nodes)
+  BoundaryGhosts ghosts_;         // hold: sph.no_penetration
+  par::Buffer<Vec3> ghost_;       // mdbc or no penetration: 12 B per boundary particle
+  par::Buffer<WallReach> reach_;  // no penetration: 12 B per wall particle
+  par::Buffer<Vec3> extra_faces_; // no penetration: 12 B per extra face of an edge or corner particle
+  par::Buffer<WallPlane> faces_;  // no penetration: each particle's nearest wall plane, from the last rates (16 B)
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{};
