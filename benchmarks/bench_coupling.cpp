@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   auto init = sph::build_initial_state(c);
   std::unique_ptr<sim::CoupledParts> cp;
   if (c.coupled()) cp = std::make_unique<sim::CoupledParts>(c, init);
-  sph::WcsphSolver solver(c, init);
+  sph::WcsphSolver solver(sph::solver_config(c), init);
   const std::size_t n_all = init.particles.size();
   auto one_step = [&] {
     const auto s = solver.step(1.0);

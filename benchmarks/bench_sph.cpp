@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
     const auto init = surge::sph::build_initial_state(c);
     n_fluid = init.n_fluid;
     n_all = init.particles.size();
-    solver = std::make_unique<surge::sph::WcsphSolver>(c, init);
+    solver = std::make_unique<surge::sph::WcsphSolver>(surge::sph::solver_config(c), init);
   }
   solver->step(1.0); // warm-up: first sort of an unsorted set, page faults
   const auto t0 = std::chrono::steady_clock::now();

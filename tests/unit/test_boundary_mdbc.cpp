@@ -4,7 +4,8 @@
 #include "test_helpers.hpp"
 
 #include "surge/geometry/particle_generators.hpp"
-#include "surge/sph/boundary_mdbc.hpp"
+#include "surge/io/case_schema.hpp"
+#include "surge/sph/boundary/mdbc_density.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
@@ -83,7 +84,7 @@ TEST(Mdbc, LinearDensityFieldIsExtrapolatedExactly) {
 double mean_bottom_pressure(const std::string& boundary) {
   const Case c = io::read_case_text(test::hydrostatic_tank_case(boundary), "hydro.yaml");
   const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver s(c, init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
   sph::Gauges g(c, init);
   double t = 0, sum = 0;
   int n = 0;
@@ -103,4 +104,41 @@ TEST(Mdbc, HydrostaticPressureWithinTwoPercent) {
   std::printf("bottom pressure, mean over 0.3-0.6 s: mdbc %.1f Pa (%+.2f %%), expected %.1f Pa\n", mdbc,
               100 * (mdbc / expected - 1), expected);
   EXPECT_NEAR(mdbc, expected, 0.02 * expected);
+}
+
+// The wall models a case may name (the schema's choices for sph.boundary) are the models
+// the solver knows (sph/boundary/boundary_model.cpp), in the same order; an unknown name
+// is rejected with the list of known ones.
+TEST(BoundaryModels, TheSchemaListsEveryRegisteredModel) {
+  std::vector<std::string> schema, registry;
+  for (const auto& f : io::sph_fields())
+    if (std::string(f.key) == "boundary") schema = f.choices;
+  for (const auto& m : sph::boundary_models()) registry.emplace_back(m.name);
+  EXPECT_EQ(schema, registry);
+  for (const auto& name : registry) EXPECT_EQ(std::string(sph::boundary_model(name).name), name);
+  try {
+    (void)sph::boundary_model("slip");
+    FAIL() << "an unknown model was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: dynamic, mdbc"), std::string::npos) << e.what();
+  }
+}
+
+// A case's words become the solver's typed configuration once (sph/solver_config.cpp).
+TEST(BoundaryModels, SolverConfigTypesTheCaseOnce) {
+  const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml");
+  Case m = c;
+  m.sph.boundary = "mdbc";
+  m.sph.integrator = "symplectic";
+  m.sph.no_penetration = false;
+  const auto a = sph::solver_config(c), b = sph::solver_config(m);
+  EXPECT_STREQ(a.boundary->name, "dynamic");
+  EXPECT_STREQ(b.boundary->name, "mdbc");
+  EXPECT_EQ(a.integrator, sph::Integrator::Verlet);
+  EXPECT_EQ(b.integrator, sph::Integrator::Symplectic);
+  EXPECT_TRUE(a.no_penetration);
+  EXPECT_FALSE(b.no_penetration);
+  EXPECT_FLOAT_EQ(a.rho_min, 700.0f);
+  EXPECT_FLOAT_EQ(a.rho_max, 1300.0f);
+  EXPECT_FLOAT_EQ(a.prm.mass, 1000.0f * 1e-6f);
 }

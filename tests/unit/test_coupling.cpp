@@ -34,7 +34,8 @@ struct Coupled {
   sim::CoupledParts parts;
   sph::WcsphSolver sph;
   explicit Coupled(const std::string& text)
-      : c(io::read_case_text(text, "blob.yaml")), init(sph::build_initial_state(c)), parts(c, init), sph(c, init) {}
+      : c(io::read_case_text(text, "blob.yaml")), init(sph::build_initial_state(c)), parts(c, init),
+        sph(sph::solver_config(c), init) {}
   void step() {
     const auto s = sph.step(1e9);
     parts.coupling->after_fluid_step(sph, *parts.dem, s.dt);

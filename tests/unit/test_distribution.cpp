@@ -46,7 +46,7 @@ bool same(const State& a, const State& b) {
 long slab_mismatches(const std::string& extra, double halo_factor, bool upper, int steps) {
   const Case c = io::read_case_text(test::tank_case(0.01, 0.0, extra), "tank.yaml");
   const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver whole(c, init), slab(c, init);
+  sph::WcsphSolver whole(sph::solver_config(c), init), slab(sph::solver_config(c), init);
   whole.set_distribution(one_process());
   slab.set_distribution(one_process());
   particles::HostParticles h = init.particles;
@@ -101,14 +101,14 @@ TEST(Distribution, TooThinAHaloChangesTheResult) {
 
 TEST(Distribution, ReachCountsEvaluationsAndGhosts) {
   const Case dyn = io::read_case_text(test::tank_case(0.01), "tank.yaml");
-  const sph::WcsphSolver a(dyn, sph::build_initial_state(dyn));
+  const sph::WcsphSolver a(sph::solver_config(dyn), sph::build_initial_state(dyn));
   const double support = a.params().kernel.support();
   EXPECT_DOUBLE_EQ(a.dependency_reach(), support);
   const Case sym = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {integrator: symplectic}\n"), "tank.yaml");
-  const sph::WcsphSolver b(sym, sph::build_initial_state(sym));
+  const sph::WcsphSolver b(sph::solver_config(sym), sph::build_initial_state(sym));
   EXPECT_DOUBLE_EQ(b.dependency_reach(), 2 * support);
   const Case md = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: mdbc}\n"), "tank.yaml");
-  const sph::WcsphSolver m(md, sph::build_initial_state(md));
+  const sph::WcsphSolver m(sph::solver_config(md), sph::build_initial_state(md));
   // Ghosts lie up to twice the wall thickness away (a corner particle's, farther).
   EXPECT_GT(m.dependency_reach(), 2 * support + 2 * 0.01);
 }

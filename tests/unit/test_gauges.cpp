@@ -19,7 +19,7 @@ namespace {
 std::vector<double> read_gauges(const std::string& text) {
   const Case c = io::read_case_text(text, "gauges.yaml");
   const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver s(c, init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
   sph::Gauges g(c, init);
   return g.sample(s);
 }

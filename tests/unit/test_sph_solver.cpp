@@ -44,7 +44,7 @@ void expect_momentum_conserved(const std::string& integrator, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<float> nd(0, 0.5f);
   for (auto& v : init.particles.vel) v = {nd(rng), nd(rng), nd(rng)};
-  sph::WcsphSolver s(c, init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
   auto momentum = [&] {
     const auto h = by_id(s);
     Vec3d p{};
@@ -76,7 +76,7 @@ TEST(WcsphSolver, SameResultOnOneAndTwoThreads) {
   const auto init = sph::build_initial_state(c);
   auto run = [&](int threads) {
     par::set_threads(threads);
-    sph::WcsphSolver s(c, init);
+    sph::WcsphSolver s(sph::solver_config(c), init);
     for (int k = 0; k < 50; ++k) s.step(1.0);
     return by_id(s);
   };
@@ -96,7 +96,7 @@ TEST(WcsphSolver, FarFromOriginGivesSameNeighboursAndValues) {
   const Case near_c = io::read_case_text(test::tank_case(0.01, 0.0, gauge), "near.yaml");
   const Case far_c = io::read_case_text(test::tank_case(0.01, 10000.0, gauge_far), "far.yaml");
   const auto ia = sph::build_initial_state(near_c), ib = sph::build_initial_state(far_c);
-  sph::WcsphSolver a(near_c, ia), b(far_c, ib);
+  sph::WcsphSolver a(sph::solver_config(near_c), ia), b(sph::solver_config(far_c), ib);
   sph::Gauges ga(near_c, ia), gb(far_c, ib);
   for (int k = 0; k < 40; ++k) {
     a.step(1.0);
@@ -121,7 +121,7 @@ TEST(WcsphSolver, HydrostaticTankSettles) {
   const double H = 0.2, dp = 0.01;
   const Case c = io::read_case_text(test::hydrostatic_tank_case(), "hydro.yaml");
   const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver s(c, init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
   sph::Gauges g(c, init);
   auto kinetic = [&] {
     const auto h = by_id(s);
@@ -160,7 +160,7 @@ TEST(WcsphSolver, FourtakasDiffusionLeavesHydrostaticColumnAlone) {
                                           "fluid: [{box: {min: [0.4,0.4,0.4], max: [0.5,0.5,0.6]}}]\n",
                                       "col.yaml");
     const auto init = sph::build_initial_state(c);
-    sph::WcsphSolver s(c, init);
+    sph::WcsphSolver s(sph::solver_config(c), init);
     s.step(1.0);
     const auto h = by_id(s);
     double sum = 0;

@@ -1,10 +1,10 @@
-// Walls hold water: the no-penetration condition (sph/no_penetration.hpp) in closed form,
+// Walls hold water: the no-penetration condition (sph/boundary/no_penetration.hpp) in closed form,
 // a box of water thrown at a wall at 3 m/s with either boundary, and the geometric count
 // of fluid found inside walls (sim::WallLeaks).
 #include "test_helpers.hpp"
 
 #include "surge/sim/wall_leaks.hpp"
-#include "surge/sph/no_penetration.hpp"
+#include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
 #include <gtest/gtest.h>
@@ -281,7 +281,7 @@ ImpactResult impact(const std::string& boundary, const std::string& integrator, 
                              "walls: [{name: tank, box: {min: [0,0,0], max: [0.4,0.1,0.8]}}]\n",
                          "impact.yaml");
   const auto init = sph::build_initial_state(c);
-  sph::WcsphSolver s(c, init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
   ImpactResult r;
   double t = 0;
   particles::HostParticles h;

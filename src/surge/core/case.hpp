@@ -42,7 +42,7 @@ struct SphConfig {
   std::string integrator = "verlet"; // verlet | symplectic
   std::string diffusion = "molteni"; // density diffusion: molteni (SPEC §2.3) | fourtakas (dynamic part only)
   std::string boundary = "dynamic";  // dynamic (the paper's, SPEC §2.6) | mdbc (English et al. 2022, no gap)
-  bool no_penetration = true;        // keep fluid dp/4 in front of every wall face (sph/no_penetration.hpp)
+  bool no_penetration = true;        // keep fluid dp/4 in front of every wall face (sph/boundary/no_penetration.hpp)
   int euler_every = 40;
   double rho_min = 0.7; // removal bounds, as fractions of rho0
   double rho_max = 1.3;

@@ -26,7 +26,7 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
 // the closest point of the wall's surface, into the fluid side.
 Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // How far the wall particle at p holds water off under the no-penetration condition
-// (sph/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
+// (sph/boundary/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
 // its patch of face; `sphere`, the radius around it that water may not enter; `faces`,
 // the ghost-style offsets (twice the way to the face) of the faces it holds besides the
 // one it mirrors through (a solid box's edge and corner particles: one or two more);

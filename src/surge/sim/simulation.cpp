@@ -146,7 +146,7 @@ int check(const Case& c) {
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
               c.sound_speed());
   {
-    const auto [lo, hi] = sph::fluid_region(c, init);
+    const Vec3 lo = init.fluid_lo, hi = init.fluid_hi;
     const Vec3d a = Vec3d(lo) + init.origin, b = Vec3d(hi) + init.origin;
     std::printf("removal     fluid leaving x [%.4g, %.4g], y [%.4g, %.4g], z [%.4g, %.4g] m is removed (the domain, "
                 "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
@@ -203,7 +203,7 @@ public:
   // fail on input happens before the output folder is touched.
   SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
       : c_(c), opt_(opt), init_(sph::build_initial_state(c)), cp_(coupled_parts(c, init_)),
-        solver_(c, init_, DistributedRun::enabled() ? &none_ : nullptr),
+        solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr),
         gauges_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
         dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
         walls_pvd_((out_ / "walls.pvd").string()), fluid_pvd_((out_ / "fluid.pvd").string()),

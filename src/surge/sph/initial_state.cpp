@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 namespace surge::sph {
 
@@ -73,6 +74,7 @@ InitialState build_initial_state(const Case& c) {
                      "every fluid particle lies inside a wall; check the walls and the fluid boxes");
   if (s.particles.size() > 2'000'000'000ULL)
     throw InputError(c.source, 0, "dp", "more than 2e9 particles; increase dp");
+  std::tie(s.fluid_lo, s.fluid_hi) = fluid_region(c, s);
   return s;
 }
 

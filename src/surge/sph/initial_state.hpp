@@ -4,8 +4,8 @@
 #pragma once
 #include "surge/core/case.hpp"
 #include "surge/particles/particle_store.hpp"
+#include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/eos_tait.hpp"
-#include "surge/sph/no_penetration.hpp"
 
 #include <cstdint>
 #include <utility>
@@ -28,6 +28,7 @@ struct InitialState {
   std::vector<Vec3> boundary_ghost;
   std::vector<WallReach> wall_reach; // per wall particle (id - first_boundary_id < n_wall)
   std::vector<Vec3> extra_faces;     // the faces of WallReach::extra
+  Vec3 fluid_lo{}, fluid_hi{};       // where fluid may be (fluid_region)
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)

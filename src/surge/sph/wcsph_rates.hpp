@@ -15,9 +15,9 @@
 #pragma once
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/particles/particle_store.hpp"
+#include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/eos_tait.hpp"
 #include "surge/sph/kernel_wendland_c2.hpp"
-#include "surge/sph/no_penetration.hpp"
 
 namespace surge::sph {
 
@@ -46,8 +46,7 @@ struct Rates {
 // `gh`: with the no-penetration condition, the wall particles' ghost offsets and reach,
 // from which each fluid particle finds the wall face or particle it would reach first.
 [[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
-                                                const particles::ParticleView& p, int i,
-                                                const BoundaryGhosts& gh = {}) {
+                                                const particles::ParticleView& p, int i, const WallHoldView& gh = {}) {
   const Real h = prm.kernel.h;
   const Real eta2 = Real(0.01) * h * h;
   const Real r2max = prm.kernel.support() * prm.kernel.support();

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <limits>
-#include <tuple>
 
 namespace surge::sph {
 
@@ -10,23 +9,9 @@ namespace detail {
 // The loops of one SPH step, as free functions: nvcc's extended lambdas may not
 // live in private member functions.
 
-// mDBC: each boundary particle takes the fluid's density at its ghost node (boundary_mdbc.hpp).
-void boundary_densities(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
-                        const particles::ParticleView& p) {
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  const Real rho0 = prm.eos.rho0;
-  par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) {
-        if (p.kind[i] == fluid) return;
-        const Vec3 xb = p.pos[i];
-        const Real rho = mdbc_density(prm, g, p, xb, xb + gh.offset[p.id[i] - gh.first_id], p.rho[i]);
-        p.rho[i] = boundary_density(rho, rho0);
-      });
-}
-
 // EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
 // condition (`faces` not null) the wall plane each fluid particle would reach first.
-void compute_rates(const WcsphParams& prm, const BoundaryGhosts& gh, const neighbour::GridView& g,
+void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbour::GridView& g,
                    const particles::ParticleView& p, WallPlane* faces) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
@@ -193,18 +178,10 @@ std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
 }
 } // namespace detail
 
-WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particles::HostParticles* held) : case_(c) {
-  const double h = c.h();
-  prm_.kernel = WendlandC2(static_cast<Real>(h));
-  prm_.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
-  prm_.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
-  prm_.dp = static_cast<Real>(c.dp);
-  prm_.alpha = static_cast<Real>(c.sph.alpha);
-  prm_.delta = static_cast<Real>(c.sph.delta);
-  prm_.gravity = Vec3(c.gravity);
-  prm_.fourtakas = c.sph.diffusion == "fourtakas";
-  symplectic_ = c.sph.integrator == "symplectic";
-  std::tie(dom_lo_, dom_hi_) = fluid_region(c, init);
+WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, const particles::HostParticles* held)
+    : cfg_(cfg), boundary_(cfg.boundary->make(init, cfg.prm)), first_boundary_id_(init.first_boundary_id),
+      dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
+  if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
   // The grid covers that region and every particle.
   Vec3 lo = dom_lo_, hi = dom_hi_;
   for (const auto& p : init.particles.pos)
@@ -212,20 +189,8 @@ WcsphSolver::WcsphSolver(const Case& c, const InitialState& init, const particle
       lo[k] = std::fmin(lo[k], p[k]);
       hi[k] = std::fmax(hi[k], p[k]);
     }
-  grid_.set_spec(neighbour::make_grid(lo, hi, prm_.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
+  grid_.set_spec(neighbour::make_grid(lo, hi, cfg_.prm.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
   store_.upload(held ? *held : init.particles);
-  mdbc_ = c.sph.boundary == "mdbc";
-  ghosts_.hold = c.sph.no_penetration;
-  if (mdbc_ || ghosts_.hold) par::upload(ghost_, init.boundary_ghost); // 12 B per boundary particle
-  if (ghosts_.hold) {
-    par::upload(reach_, init.wall_reach);
-    par::upload(extra_faces_, init.extra_faces);
-  }
-  ghosts_.first_id = init.first_boundary_id;
-  ghosts_.offset = ghost_.data();
-  ghosts_.reach = reach_.data();
-  ghosts_.extra_face = extra_faces_.data();
-  for (const auto& g : init.boundary_ghost) ghost_reach_ = std::fmax(ghost_reach_, static_cast<double>(norm(g)));
 }
 
 void WcsphSolver::set_distribution(const Distribution& d) {
@@ -234,9 +199,8 @@ void WcsphSolver::set_distribution(const Distribution& d) {
 }
 
 double WcsphSolver::dependency_reach() const {
-  const double support = prm_.kernel.support();
-  const double per_evaluation = support + (mdbc_ ? ghost_reach_ + support : 0.0);
-  return (symplectic_ ? 2 : 1) * per_evaluation;
+  const double per_evaluation = static_cast<double>(cfg_.prm.kernel.support()) + boundary_->extra_reach();
+  return (cfg_.integrator == Integrator::Symplectic ? 2 : 1) * per_evaluation;
 }
 
 void WcsphSolver::replace(const particles::HostParticles& h) {
@@ -264,13 +228,13 @@ void WcsphSolver::sort_and_rates() {
 void WcsphSolver::rates() {
   const auto p = store_.view();
   const auto g = grid_.view(p.pos);
-  if (mdbc_) {
+  {
     const auto t = par::timed(par::Phase::Boundary);
-    detail::boundary_densities(prm_, ghosts_, g, p);
+    boundary_->prepare(cfg_.prm, g, p);
   }
-  if (ghosts_.hold) faces_.resize(static_cast<std::size_t>(p.n));
+  WallPlane* planes = hold_.planes(p.n);
   const auto t = par::timed(par::Phase::Rates);
-  detail::compute_rates(prm_, ghosts_, g, p, ghosts_.hold ? faces_.data() : nullptr);
+  detail::compute_rates(cfg_.prm, hold_.view(), g, p, planes);
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
@@ -286,9 +250,9 @@ void WcsphSolver::refresh() {
 double WcsphSolver::dt_from_rates() {
   const auto t = par::timed(par::Phase::TimeStep);
   const double inf = std::numeric_limits<Real>::max();
-  const double dt = dist_.minimum(static_cast<double>(detail::min_dt(prm_, store_.view())));
+  const double dt = dist_.minimum(static_cast<double>(detail::min_dt(cfg_.prm, store_.view())));
   // No fluid anywhere: the sound speed's step.
-  return case_.sph.cfl * (dt == inf ? static_cast<double>(prm_.kernel.h / prm_.eos.c0) : dt);
+  return cfg_.cfl * (dt == inf ? static_cast<double>(cfg_.prm.kernel.h / cfg_.prm.eos.c0) : dt);
 }
 
 double WcsphSolver::stable_dt() {
@@ -298,9 +262,7 @@ double WcsphSolver::stable_dt() {
 
 int WcsphSolver::flag_removals(StepStats& s) {
   const auto t = par::timed(par::Phase::Removal);
-  const auto rmin = static_cast<Real>(case_.sph.rho_min * case_.sph.rho0),
-             rmax = static_cast<Real>(case_.sph.rho_max * case_.sph.rho0);
-  const long long packed = detail::flag_removals(store_.view(), dom_lo_, dom_hi_, rmin, rmax);
+  const long long packed = detail::flag_removals(store_.view(), dom_lo_, dom_hi_, cfg_.rho_min, cfg_.rho_max);
   s.removed_domain = static_cast<int>(packed & ((1LL << 21) - 1));
   s.removed_density = static_cast<int>((packed >> 21) & ((1LL << 21) - 1));
   s.non_finite = static_cast<int>(packed >> 42);
@@ -315,14 +277,15 @@ StepStats WcsphSolver::step(double dt_max) {
   const double dt_d = std::fmin(dt_from_rates(), dt_max);
   s.dt = dt_d;
   const Real dt = static_cast<Real>(dt_d);
-  const Real rho0 = prm_.eos.rho0;
-  if (symplectic_) store_.reserve_position_scratch();
+  const Real rho0 = cfg_.prm.eos.rho0;
+  const bool symplectic = cfg_.integrator == Integrator::Symplectic;
+  if (symplectic) store_.reserve_position_scratch();
   const auto p = store_.view();
-  const WallPlane* faces = ghosts_.hold ? faces_.data() : nullptr;
-  const Real dmin = keep_off_distance(prm_.dp);
-  if (!symplectic_) {
+  const WallPlane* faces = hold_.planes();
+  const Real dmin = keep_off_distance(cfg_.prm.dp);
+  if (!symplectic) {
     const auto t = par::timed(par::Phase::Integrate);
-    detail::verlet_update(p, dt, rho0, steps_ % case_.sph.euler_every == 0, faces, dmin);
+    detail::verlet_update(p, dt, rho0, steps_ % cfg_.euler_every == 0, faces, dmin);
   } else {
     {
       const auto t = par::timed(par::Phase::Integrate);

@@ -36,9 +36,10 @@ struct WallReach {
   Real wide = 0;
 };
 
-// Where a kernel finds each boundary particle's ghost node, x_g = x_b + offset[id - first_id],
-// and each wall particle's reach (reach[id - first_id]; wall ids come before body ids).
-struct BoundaryGhosts {
+// What the rates kernel reads of the wall particles (WallHold owns it): each one's ghost
+// offset (its face lies at x_b + offset/2), reach and extra faces, by id - first_id (wall
+// ids come before body ids).
+struct WallHoldView {
   bool hold = false; // the no-penetration condition is on: fluid notes the wall plane it would reach first
   std::uint32_t first_id = 0;
   const Vec3* offset = nullptr;

@@ -1,0 +1,41 @@
+// The no-penetration condition (no_penetration.hpp) with any wall model
+// (sph.no_penetration): what the wall particles hold (their faces, from their ghost
+// offsets, and reach) and, from each rates pass, the plane every fluid particle would
+// reach first, which the update keeps it dp/4 in front of.
+#pragma once
+#include "surge/par/parallel.hpp"
+#include "surge/sph/boundary/no_penetration.hpp"
+#include "surge/sph/initial_state.hpp"
+
+namespace surge::sph {
+
+class WallHold {
+public:
+  WallHold() = default; // off
+  // On: `shared`, the wall model's ghost offsets if it keeps them (wall particles first),
+  // else null and the wall particles' own are kept here (12 B each).
+  WallHold(const InitialState& init, const Vec3* shared);
+  [[nodiscard]] bool on() const { return on_; }
+  // What the rates kernel reads (hold false when off); built on each call, so that it
+  // never outlives a buffer.
+  [[nodiscard]] WallHoldView view() const {
+    return {on_, first_id_, shared_ ? shared_ : offset_.data(), reach_.data(), extra_faces_.data()};
+  }
+  // One plane per particle, written by the rates pass: null when off.
+  [[nodiscard]] WallPlane* planes(int n);
+  [[nodiscard]] const WallPlane* planes() const { return on_ ? planes_.data() : nullptr; }
+  [[nodiscard]] std::size_t bytes() const {
+    return offset_.bytes() + reach_.bytes() + extra_faces_.bytes() + planes_.bytes();
+  }
+
+private:
+  bool on_ = false;
+  std::uint32_t first_id_ = 0;
+  const Vec3* shared_ = nullptr;  // the wall model's ghost offsets, if it keeps them
+  par::Buffer<Vec3> offset_;      // the wall particles' ghost offsets, unless shared
+  par::Buffer<WallReach> reach_;  // 16 B per wall particle
+  par::Buffer<Vec3> extra_faces_; // 12 B per extra face of a solid box's or mesh's edge particle
+  par::Buffer<WallPlane> planes_; // 16 B per particle
+};
+
+} // namespace surge::sph

@@ -1,0 +1,26 @@
+#include "surge/sph/solver_config.hpp"
+
+namespace surge::sph {
+
+SolverConfig solver_config(const Case& c) {
+  SolverConfig s;
+  WcsphParams& p = s.prm;
+  p.kernel = WendlandC2(static_cast<Real>(c.h()));
+  p.eos = TaitEos(static_cast<Real>(c.sph.rho0), static_cast<Real>(c.sound_speed()));
+  p.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
+  p.dp = static_cast<Real>(c.dp);
+  p.alpha = static_cast<Real>(c.sph.alpha);
+  p.delta = static_cast<Real>(c.sph.delta);
+  p.gravity = Vec3(c.gravity);
+  p.fourtakas = c.sph.diffusion == "fourtakas";
+  s.integrator = c.sph.integrator == "symplectic" ? Integrator::Symplectic : Integrator::Verlet;
+  s.boundary = &boundary_model(c.sph.boundary);
+  s.no_penetration = c.sph.no_penetration;
+  s.cfl = c.sph.cfl;
+  s.euler_every = c.sph.euler_every;
+  s.rho_min = static_cast<Real>(c.sph.rho_min * c.sph.rho0);
+  s.rho_max = static_cast<Real>(c.sph.rho_max * c.sph.rho0);
+  return s;
+}
+
+} // namespace surge::sph
