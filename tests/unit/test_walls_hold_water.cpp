@@ -78,6 +78,13 @@ bool held(const sph::InitialState& init, const std::vector<std::size_t>& near, c
   return false;
 }
 
+// Every wall particle's index (id - first boundary id), for held() by brute force.
+std::vector<std::size_t> every_wall(const sph::InitialState& init) {
+  std::vector<std::size_t> all(init.wall_reach.size());
+  for (std::size_t b = 0; b < all.size(); ++b) all[b] = b;
+  return all;
+}
+
 // Points of the faces of box b (every dp/8, edges and corners included), `out` spacings
 // in front of them (outward for a solid box, inward for a tank); the bottom and top faces
 // only when asked.
@@ -156,8 +163,7 @@ TEST(NoPenetration, DISABLED_EveryPointOfASolidMeshBoxIsHeld) {
                              stl + ", solid: true}]\n",
                          "cover.yaml");
   const auto init = sph::build_initial_state(c);
-  std::vector<std::size_t> all(init.wall_reach.size());
-  for (std::size_t b = 0; b < all.size(); ++b) all[b] = b;
+  const auto all = every_wall(init);
   long bare = 0, n = 0;
   for (const auto& x : face_points(block, dp, 1e-3, false, false, true)) {
     bare += !held(init, all, x, static_cast<Real>(dp));
@@ -240,8 +246,7 @@ TEST(NoPenetration, EveryPointOfAMeshSlopeIsHeldAndWaterHalfASpacingOffIsFree) {
                                         slope + ", solid: true}]\n",
                                     "slope.yaml");
   const auto init = sph::build_initial_state(c);
-  std::vector<std::size_t> all(init.wall_reach.size());
-  for (std::size_t b = 0; b < all.size(); ++b) all[b] = b;
+  const auto all = every_wall(init);
   const Vec3d n = Vec3d{-0.25, 0, 1} * (1 / std::sqrt(1 + 0.0625));
   long bare = 0, free_held = 0, points = 0;
   for (double x = 0.05; x <= 0.25; x += dp / 8)

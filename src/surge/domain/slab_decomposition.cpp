@@ -9,51 +9,47 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <type_traits>
 
 namespace surge::domain {
 namespace {
 
-// One particle as it travels between processes: the state a step needs (rates are
-// recomputed after every exchange), 56 bytes.
-struct Record {
-  Vec3 pos, vel, vel_prev;
-  Real rho, rho_prev, press;
-  std::uint32_t id;
-  std::uint8_t kind, halo;
-};
-
-Record record(const particles::HostParticles& h, std::size_t i) {
-  return {h.pos[i], h.vel[i], h.vel_prev[i], h.rho[i], h.rho_prev[i], h.press[i], h.id[i], h.kind[i], 0};
+// One particle as it travels between processes: every state field (particles/
+// particle_fields.hpp: what a step needs; rates are recomputed after every exchange), its
+// bytes in the list's order, 61 bytes.
+std::size_t record_size() {
+  std::size_t size = 0;
+  particles::HostParticles h;
+  particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned, const auto*) {
+    size += sizeof(typename std::decay_t<decltype(v)>::value_type);
+  });
+  return size;
 }
 
 void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i) {
-  const Record r = record(h, i);
-  const auto at = out.size();
-  out.resize(at + sizeof(Record));
-  std::memcpy(out.data() + at, &r, sizeof(Record));
-}
-
-void push(particles::HostParticles& h, const Record& r, std::uint8_t halo) {
-  h.pos.push_back(r.pos);
-  h.vel.push_back(r.vel);
-  h.vel_prev.push_back(r.vel_prev);
-  h.rho.push_back(r.rho);
-  h.rho_prev.push_back(r.rho_prev);
-  h.press.push_back(r.press);
-  h.id.push_back(r.id);
-  h.kind.push_back(r.kind);
-  h.halo.push_back(halo);
+  particles::for_each_state_field(h, h, [&](const char*, const auto& v, const auto&, unsigned, const auto*) {
+    const auto at = out.size();
+    out.resize(at + sizeof(v[i]));
+    std::memcpy(out.data() + at, &v[i], sizeof(v[i]));
+  });
 }
 
 void push(particles::HostParticles& dst, const particles::HostParticles& src, std::size_t i, std::uint8_t halo) {
-  push(dst, record(src, i), halo);
+  particles::for_each_state_field(
+      dst, src, [&](const char*, auto& d, const auto& s, unsigned, const auto*) { d.push_back(s[i]); });
+  dst.halo.push_back(halo);
 }
 
 void unpack(const std::vector<char>& in, particles::HostParticles& h, std::uint8_t halo) {
-  for (std::size_t at = 0; at + sizeof(Record) <= in.size(); at += sizeof(Record)) {
-    Record r{};
-    std::memcpy(&r, in.data() + at, sizeof(Record));
-    push(h, r, halo);
+  const std::size_t size = record_size();
+  for (std::size_t at = 0; at + size <= in.size();) {
+    particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned, const auto*) {
+      typename std::decay_t<decltype(v)>::value_type x{};
+      std::memcpy(&x, in.data() + at, sizeof x);
+      at += sizeof x;
+      v.push_back(x);
+    });
+    h.halo.push_back(halo);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 namespace surge::io {
 namespace {
@@ -77,13 +78,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.put<std::uint64_t>(c.gauge_rows.size());
   for (const auto& r : c.gauge_rows) w.put_vec(r);
   const auto& p = c.particles;
-  w.put_vec(p.pos);
-  w.put_vec(p.vel);
-  w.put_vec(p.vel_prev);
-  w.put_vec(p.rho);
-  w.put_vec(p.rho_prev);
-  w.put_vec(p.kind);
-  w.put_vec(p.id);
+  particles::for_each_state_field(p, p, [&](const char*, const auto& v, const auto&, unsigned use, const auto*) {
+    if (use & particles::kCheckpoint) w.put_vec(v);
+  });
   w.put_vec(std::vector<char>(c.dem_state.begin(), c.dem_state.end()));
   write_file_atomic(path, w.bytes_);
 }
@@ -117,22 +114,22 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (rows > bytes.size()) r.fail();
   for (std::uint64_t k = 0; k < rows; ++k) c.gauge_rows.push_back(r.get_vec<double>());
   auto& p = c.particles;
-  p.pos = r.get_vec<Vec3>();
-  p.vel = r.get_vec<Vec3>();
-  p.vel_prev = r.get_vec<Vec3>();
-  p.rho = r.get_vec<Real>();
-  p.rho_prev = r.get_vec<Real>();
-  p.kind = r.get_vec<std::uint8_t>();
-  p.id = r.get_vec<std::uint32_t>();
+  particles::for_each_state_field(p, p, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
+    if (use & particles::kCheckpoint) v = r.get_vec<typename std::decay_t<decltype(v)>::value_type>();
+  });
   if (!v1) {
     const auto dem = r.get_vec<char>();
     c.dem_state.assign(dem.begin(), dem.end());
   }
   const auto n = p.pos.size();
-  if (p.vel.size() != n || p.vel_prev.size() != n || p.rho.size() != n || p.rho_prev.size() != n ||
-      p.kind.size() != n || p.id.size() != n || !r.done())
-    r.fail();
-  p.press.assign(n, 0);
+  bool sizes_agree = r.done();
+  particles::for_each_state_field(p, p, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
+    if (use & particles::kCheckpoint)
+      sizes_agree = sizes_agree && v.size() == n;
+    else
+      v.assign(n, {}); // not checkpointed: recomputed (pressure)
+  });
+  if (!sizes_agree) r.fail();
   return c;
 }
 

@@ -11,14 +11,9 @@ void ParticleStore::upload(const HostParticles& h) {
   const auto n = h.size();
   removed_pending_ =
       static_cast<int>(std::count(h.kind.begin(), h.kind.end(), static_cast<std::uint8_t>(Kind::Removed)));
-  par::upload(pos_, h.pos);
-  par::upload(vel_, h.vel);
-  par::upload(vel_prev_, h.vel_prev.size() == n ? h.vel_prev : h.vel);
-  par::upload(rho_, h.rho);
-  par::upload(rho_prev_, h.rho_prev.size() == n ? h.rho_prev : h.rho);
-  par::upload(press_, h.press);
-  par::upload(kind_, h.kind);
-  par::upload(id_, h.id);
+  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned use, const auto* from) {
+    par::upload(buf, (use & kHistory) && host.size() != n ? *from : host);
+  });
   if (distributed_) {
     if (h.halo.size() == n)
       par::upload(halo_, h.halo);
@@ -38,19 +33,12 @@ void ParticleStore::upload(const HostParticles& h) {
 
 void ParticleStore::download(HostParticles& h, bool history) const {
   const auto n = static_cast<std::size_t>(n_);
-  par::download(h.pos, pos_, n);
-  par::download(h.vel, vel_, n);
-  par::download(h.rho, rho_, n);
-  par::download(h.press, press_, n);
-  par::download(h.kind, kind_, n);
-  par::download(h.id, id_, n);
-  if (history) {
-    par::download(h.vel_prev, vel_prev_, n);
-    par::download(h.rho_prev, rho_prev_, n);
-  } else {
-    h.vel_prev.clear();
-    h.rho_prev.clear();
-  }
+  for_each_state_field(h, f_, [&](const char*, auto& host, const auto& buf, unsigned use, const auto*) {
+    if ((use & kHistory) && !history)
+      host.clear();
+    else
+      par::download(host, buf, n);
+  });
   if (distributed_)
     par::download(h.halo, halo_, n);
   else
@@ -61,18 +49,18 @@ void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<st
 
 ParticleView ParticleStore::view() {
   return {n_,
-          pos_.data(),
-          vel_.data(),
-          vel_prev_.data(),
+          f_.pos.data(),
+          f_.vel.data(),
+          f_.vel_prev.data(),
           pos_prev_.data(),
           acc_.data(),
-          rho_.data(),
-          rho_prev_.data(),
+          f_.rho.data(),
+          f_.rho_prev.data(),
           drho_.data(),
-          press_.data(),
+          f_.press.data(),
           vsig_.data(),
-          kind_.data(),
-          id_.data(),
+          f_.kind.data(),
+          f_.id.data(),
           distributed_ ? halo_.data() : nullptr};
 }
 
@@ -84,24 +72,20 @@ void ParticleStore::reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const st
 int ParticleStore::sort(neighbour::UniformGrid& grid) {
   cls_.resize(static_cast<std::size_t>(n_));
   std::uint8_t* dead = cls_.data();
-  const std::uint8_t* kind = kind_.data();
+  const std::uint8_t* kind = f_.kind.data();
   const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
   // Sort class: fluid first in each cell, then boundary particles; removed ones last.
   par::parallel_for(
       n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
-  grid.sort(pos_.data(), dead, n_, distributed_ ? id_.data() : nullptr);
+  grid.sort(f_.pos.data(), dead, n_, distributed_ ? f_.id.data() : nullptr);
   const std::uint32_t* perm = grid.permutation();
   // acc, drho, press and vsig are recomputed after every sort, and pos_prev is scratch
   // within one symplectic step: none of them is carried through the sort, so acc and
   // drho serve as the gather scratch (no extra 16 B per particle), and cls, spent once
   // the keys are built, as the scratch of kind.
-  reorder(pos_, acc_, perm);
-  reorder(vel_, acc_, perm);
-  reorder(vel_prev_, acc_, perm);
-  reorder(rho_, drho_, perm);
-  reorder(rho_prev_, drho_, perm);
-  reorder(kind_, cls_, perm);
-  reorder(id_, tmpu_, perm);
+  for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned use, const auto*) {
+    if (use & kSorted) reorder(buf, scratch(buf), perm);
+  });
   if (distributed_) reorder(halo_, cls_, perm);
   grid.build_cell_start(n_);
   // The host knows how many were flagged, so the GPU need not report the live count.
@@ -115,11 +99,11 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   removed_pending_ = 0;
   const int dropped = n_ - live;
   n_ = live;
-  for (auto* b : {&pos_, &vel_, &vel_prev_, &acc_}) b->truncate(static_cast<std::size_t>(live));
-  for (auto* b : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b->truncate(static_cast<std::size_t>(live));
-  kind_.truncate(static_cast<std::size_t>(live));
-  id_.truncate(static_cast<std::size_t>(live));
-  if (distributed_) halo_.truncate(static_cast<std::size_t>(live));
+  const auto keep = static_cast<std::size_t>(live);
+  for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) { buf.truncate(keep); });
+  acc_.truncate(keep);
+  for (auto* b : {&drho_, &vsig_}) b->truncate(keep);
+  if (distributed_) halo_.truncate(keep);
   return dropped;
 }
 
@@ -152,8 +136,8 @@ void ParticleStore::coordinates(int axis, std::vector<Real>& x, std::vector<std:
   cls_.resize(n);
   Real* out = drho_.data();
   std::uint8_t* st = cls_.data();
-  const Vec3* pos = pos_.data();
-  const std::uint8_t* kind = kind_.data();
+  const Vec3* pos = f_.pos.data();
+  const std::uint8_t* kind = f_.kind.data();
   const std::uint8_t* halo = distributed_ ? halo_.data() : nullptr;
   const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for(
@@ -175,21 +159,16 @@ void ParticleStore::extract(const std::vector<std::uint32_t>& idx, HostParticles
   const int n = static_cast<int>(idx.size());
   par::upload(idx_, idx);
   const std::uint32_t* k = idx_.data();
-  detail::gather_to_host(pos_, k, n, extract_, out.pos);
-  detail::gather_to_host(vel_, k, n, extract_, out.vel);
-  detail::gather_to_host(vel_prev_, k, n, extract_, out.vel_prev);
-  detail::gather_to_host(rho_, k, n, extract_, out.rho);
-  detail::gather_to_host(rho_prev_, k, n, extract_, out.rho_prev);
-  detail::gather_to_host(press_, k, n, extract_, out.press);
-  detail::gather_to_host(kind_, k, n, extract_, out.kind);
-  detail::gather_to_host(id_, k, n, extract_, out.id);
+  for_each_state_field(out, f_, [&](const char*, auto& host, const auto& buf, unsigned, const auto*) {
+    detail::gather_to_host(buf, k, n, extract_, host);
+  });
   out.halo.assign(idx.size(), 0);
 }
 
 void ParticleStore::remove(const std::vector<std::uint32_t>& idx) {
   par::upload(idx_, idx);
   const std::uint32_t* k = idx_.data();
-  std::uint8_t* kind = kind_.data();
+  std::uint8_t* kind = f_.kind.data();
   const auto removed = static_cast<std::uint8_t>(Kind::Removed);
   const int n = static_cast<int>(idx.size());
   // upload filled k[0, n) (clang-tidy's analyzer loses the copy and calls k[j] undefined)
@@ -203,14 +182,9 @@ void ParticleStore::remove(const std::vector<std::uint32_t>& idx) {
 void ParticleStore::append(const HostParticles& h) {
   if (h.size() == 0) return;
   const auto n_old = static_cast<std::size_t>(n_);
-  detail::append_field(pos_, h.pos, n_old);
-  detail::append_field(vel_, h.vel, n_old);
-  detail::append_field(vel_prev_, h.vel_prev, n_old);
-  detail::append_field(rho_, h.rho, n_old);
-  detail::append_field(rho_prev_, h.rho_prev, n_old);
-  detail::append_field(press_, h.press, n_old);
-  detail::append_field(kind_, h.kind, n_old);
-  detail::append_field(id_, h.id, n_old);
+  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned, const auto*) {
+    detail::append_field(buf, host, n_old);
+  });
   if (distributed_)
     detail::append_field(halo_, h.halo.size() == h.size() ? h.halo : std::vector<std::uint8_t>(h.size(), 0), n_old);
   n_ = static_cast<int>(n_old + h.size());
@@ -222,10 +196,11 @@ void ParticleStore::append(const HostParticles& h) {
 
 std::size_t ParticleStore::bytes() const {
   std::size_t b = 0;
-  for (const auto* x : {&pos_, &vel_, &vel_prev_, &pos_prev_, &acc_}) b += x->bytes();
-  for (const auto* x : {&rho_, &rho_prev_, &drho_, &press_, &vsig_}) b += x->bytes();
-  return b + kind_.bytes() + cls_.bytes() + halo_.bytes() + id_.bytes() + tmpu_.bytes() + idx_.bytes() +
-         extract_.bytes();
+  for_each_state_field(f_, f_,
+                       [&](const char*, const auto& buf, const auto&, unsigned, const auto*) { b += buf.bytes(); });
+  for (const auto* x : {&pos_prev_, &acc_}) b += x->bytes();
+  for (const auto* x : {&drho_, &vsig_}) b += x->bytes();
+  return b + cls_.bytes() + halo_.bytes() + tmpu_.bytes() + idx_.bytes() + extract_.bytes();
 }
 
 } // namespace surge::particles

@@ -3,33 +3,12 @@
 #pragma once
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/parallel.hpp"
+#include "surge/particles/particle_fields.hpp"
 
 #include <cstdint>
 #include <vector>
 
 namespace surge::particles {
-
-// Host-side copy of particle data, used to create particles and to write output.
-struct HostParticles {
-  std::vector<Vec3> pos, vel;
-  std::vector<Real> rho, press;
-  std::vector<std::uint8_t> kind;
-  std::vector<std::uint32_t> id;
-  // Time-integration history (Verlet's v^{n-1}, rho^{n-1}); filled for checkpoints only.
-  std::vector<Vec3> vel_prev;
-  std::vector<Real> rho_prev;
-  // Distributed runs: 1 for a halo copy of a particle another process owns (empty: all owned).
-  std::vector<std::uint8_t> halo;
-  [[nodiscard]] std::size_t size() const { return pos.size(); }
-  void push(const Vec3& p, const Vec3& v, Real density, Kind k, std::uint32_t ident) {
-    pos.push_back(p);
-    vel.push_back(v);
-    rho.push_back(density);
-    press.push_back(0);
-    kind.push_back(static_cast<std::uint8_t>(k));
-    id.push_back(ident);
-  }
-};
 
 // What kernels see: raw pointers and a count. Each loop index writes only to itself.
 struct ParticleView {
@@ -96,15 +75,27 @@ public:
   [[nodiscard]] std::size_t bytes() const;
 
 private:
+  // The state fields (particle_fields.hpp), one buffer each, named as in HostParticles.
+  struct Fields {
+    par::Buffer<Vec3> pos, vel, vel_prev;
+    par::Buffer<Real> rho, rho_prev, press;
+    par::Buffer<std::uint8_t> kind;
+    par::Buffer<std::uint32_t> id;
+  };
   template <class T>
   void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
+  // The sort's gather scratch for a field of each type: buffers rebuilt after every sort.
+  par::Buffer<Vec3>& scratch(par::Buffer<Vec3>& /*field*/) { return acc_; }
+  par::Buffer<Real>& scratch(par::Buffer<Real>& /*field*/) { return drho_; }
+  par::Buffer<std::uint8_t>& scratch(par::Buffer<std::uint8_t>& /*field*/) { return cls_; }
+  par::Buffer<std::uint32_t>& scratch(par::Buffer<std::uint32_t>& /*field*/) { return tmpu_; }
   int n_ = 0;
   int removed_pending_ = 0; // marked Removed since the last sort
-  par::Buffer<Vec3> pos_, vel_, vel_prev_, pos_prev_, acc_;
-  par::Buffer<Real> rho_, rho_prev_, drho_, press_, vsig_;
+  Fields f_;
+  par::Buffer<Vec3> pos_prev_, acc_;
+  par::Buffer<Real> drho_, vsig_;
   bool distributed_ = false;
-  par::Buffer<std::uint8_t> kind_, cls_, halo_;
-  par::Buffer<std::uint32_t> id_;
+  par::Buffer<std::uint8_t> cls_, halo_;
   par::Buffer<std::uint32_t> tmpu_;
   par::Buffer<std::uint32_t> idx_;     // the exchange's selection
   par::Buffer<unsigned char> extract_; // its gathered fields, one at a time
