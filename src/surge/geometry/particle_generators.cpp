@@ -217,7 +217,6 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
   // first layer is the lattice coordinate nearest the face: half a spacing behind it on a
   // fitted lattice, between half and one and a half on the case's (at the box's far faces).
   double nearest = 1e300;
-  double held[3] = {0, 0, 0}; // distance to the face of each axis whose first layer p is in (0: none)
   for (int k = 0; k < 3; ++k) {
     const auto coords = fit ? lattice_stretched(b.min[k], b.max[k], dp) : lattice(b.min[k], b.max[k], dp);
     for (const double f : {b.min[k], b.max[k]}) {
@@ -226,24 +225,11 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
       double first = 1e300;
       for (const double x : coords) first = std::min(first, std::fabs(x - f));
       if (!(d < first + 1e-6 * dp)) continue;
-      held[k] = d;
       Vec3d o{};
       o[k] = 2 * (f - p[k]);
       if (norm(o - mirror) > 1e-9 * dp) r.faces.push_back(o);
     }
   }
-  // Each face it holds is held out to its edges with the others: on the case's lattice the
-  // far faces' first layer lies up to 1.5 spacings behind them, and the strip of a face
-  // between that layer's point of it and the edge (or the corner) is wider than 0.75 s.
-  // On a fitted lattice the edge lies 0.5 s away and the corner 0.71 s: no wider patch.
-  double wide = 0;
-  for (int k = 0; k < 3; ++k)
-    if (held[k] > 0) {
-      auto extent = [&](int a) { return held[a] > 0 ? held[a] : 0.5 * spacing(a); };
-      const double a = extent((k + 1) % 3), c = extent((k + 2) % 3);
-      wide = std::max(wide, std::sqrt(a * a + c * c) * (1 + 1e-6));
-    }
-  if (wide > r.patch) r.wide = wide;
   // The sphere reaches dp/4 in front of the particle's face, never beyond the faces' own
   // hold (a sphere bulging past it deflects the water running along the face).
   r.sphere = std::min(r.sphere, nearest + 0.25 * dp);

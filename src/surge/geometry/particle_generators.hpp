@@ -29,11 +29,9 @@ Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
 // (sph/boundary/no_penetration.hpp), from the wall lattice around it: `patch`, the half-width of
 // its patch of face; `sphere`, the radius around it that water may not enter; `faces`,
 // the ghost-style offsets (twice the way to the face) of the faces it holds besides the
-// one it mirrors through (a solid box's edge and corner particles: one or two more);
-// `wide`, the patch out to those faces' edges where it is wider than `patch` (a solid
-// box's far edges on the case's lattice), else 0.
+// one it mirrors through (a solid box's edge and corner particles: one or two more).
 struct Reach {
-  double patch = 0, sphere = 0, wide = 0;
+  double patch = 0, sphere = 0;
   std::vector<Vec3d> faces;
 };
 // `mirror`: the particle's ghost offset, ghost_point(w, mesh, p) - p; `fit`: as given to

@@ -63,8 +63,7 @@ InitialState build_initial_state(const Case& c) {
         extra = static_cast<std::int32_t>(4 * s.extra_faces.size() + reach.faces.size());
         for (const auto& o : reach.faces) s.extra_faces.push_back(Vec3(o));
       }
-      s.wall_reach.push_back(
-          {static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra, static_cast<Real>(reach.wide)});
+      s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra});
     }
     s.wall_ids.emplace_back(first, next_id);
     s.n_wall += pts.size();

@@ -26,14 +26,9 @@ namespace surge::sph {
 // around it): the half-width of its patch of face, the radius of its sphere, and the
 // faces it holds besides the one it mirrors through (a solid box's edges and corners):
 // `extra` = 4 * (index of the first in the extra-face offsets) + how many, or -1.
-// `wide` (0: none): a patch widened to reach the edges of the faces it holds (a solid
-// box's far edges on the case's lattice, whose first layer lies up to 1.5 spacings behind
-// them), which holds only where the fluid particle is in front of no other face of the
-// particle (past an edge, the other face's hold is what counts).
 struct WallReach {
   Real patch = 0, sphere = 0;
   std::int32_t extra = -1;
-  Real wide = 0;
 };
 
 // What the rates kernel reads of the wall particles (WallHold owns it): each one's ghost
@@ -78,31 +73,17 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
 
 // Calls f(plane) for each face wall particle b (at xb, ghost offset `own`, reach `reach`,
 // extra-face offsets `extra`) holds the fluid particle at xb + r off: its own face, then
-// its extra ones, each where face_below finds the particle in front of it within the
-// patch, or within the wide patch and in front of none of b's other faces.
+// its extra ones, each where face_below finds the particle in front of it within the patch
+// (the rates kernel and the coverage tests share this).
 template <class F>
 SURGE_HD void for_each_held_face(const Vec3& xb, const Vec3& r, const WallReach& reach, const Vec3& own,
                                  const Vec3* extra, F&& f) {
-  Vec3 o[4];
-  int n = 0;
-  o[n++] = own;
+  WallPlane w;
+  Real d;
+  if (face_below(xb, own, r, reach.patch, w, d)) f(w);
   if (reach.extra >= 0)
-    for (int k = 0; k < (reach.extra & 3); ++k) o[n++] = extra[(reach.extra >> 2) + k];
-  for (int a = 0; a < n; ++a) {
-    WallPlane w;
-    Real d;
-    if (face_below(xb, o[a], r, reach.patch, w, d)) {
-      f(w);
-      continue;
-    }
-    if (!(reach.wide > reach.patch) || !face_below(xb, o[a], r, reach.wide, w, d)) continue;
-    // Past another face: more than 1e-3 of its offset (a few thousandths of a spacing,
-    // above float rounding) in front of it, not on its plane.
-    bool past_edge = false;
-    for (int c = 0; c < n; ++c)
-      if (c != a) past_edge = past_edge || dot(r - o[c] * Real(0.5), o[c]) > Real(1e-3) * dot(o[c], o[c]);
-    if (!past_edge) f(w);
-  }
+    for (int k = 0; k < (reach.extra & 3); ++k)
+      if (face_below(xb, extra[(reach.extra >> 2) + k], r, reach.patch, w, d)) f(w);
 }
 
 // How far in front of a wall face fluid is kept.

@@ -33,7 +33,7 @@ private:
   std::uint32_t first_id_ = 0;
   const Vec3* shared_ = nullptr;  // the wall model's ghost offsets, if it keeps them
   par::Buffer<Vec3> offset_;      // the wall particles' ghost offsets, unless shared
-  par::Buffer<WallReach> reach_;  // 16 B per wall particle
+  par::Buffer<WallReach> reach_;  // 12 B per wall particle
   par::Buffer<Vec3> extra_faces_; // 12 B per extra face of a solid box's or mesh's edge particle
   par::Buffer<WallPlane> planes_; // 16 B per particle
 };
