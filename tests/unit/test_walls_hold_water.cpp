@@ -224,6 +224,16 @@ Coverage face_coverage(const std::string& boundary, double dp) {
   return r;
 }
 
+// Every face point held, water half a spacing off free and no bulge, at 3 cm and 1.83 cm.
+void expect_full_coverage(const std::string& boundary) {
+  for (const double dp : {0.03, 0.0183}) {
+    const Coverage r = face_coverage(boundary, dp);
+    EXPECT_EQ(r.bare, 0) << boundary << ", dp = " << dp;
+    EXPECT_EQ(r.free_held, 0) << boundary << ", dp = " << dp;
+    EXPECT_EQ(r.bulge, 0) << boundary << ", dp = " << dp;
+  }
+}
+
 } // namespace
 
 // Every point of the walls' faces is held: water reaching it is kept off by some wall
@@ -234,14 +244,7 @@ Coverage face_coverage(const std::string& boundary, double dp) {
 // nothing (918 points at 3 cm), and water entered the box there in the 3 cm mDBC run.
 // Water at its natural distance (half a spacing) is never held, nor just beyond the
 // faces' hold (no sphere bulges out to deflect the water running along a face).
-TEST(NoPenetration, EveryPointOfTheWallFacesIsHeldAndWaterHalfASpacingOffIsFree) {
-  for (const double dp : {0.03, 0.0183}) {
-    const Coverage r = face_coverage("mdbc", dp);
-    EXPECT_EQ(r.bare, 0) << "dp = " << dp;
-    EXPECT_EQ(r.free_held, 0) << "dp = " << dp;
-    EXPECT_EQ(r.bulge, 0) << "dp = " << dp;
-  }
-}
+TEST(NoPenetration, EveryPointOfTheWallFacesIsHeldAndWaterHalfASpacingOffIsFree) { expect_full_coverage("mdbc"); }
 
 // The same with the dynamic boundary, whose solid box keeps the case's lattice (the
 // stretched one set off a pressure shock, docs/validation.md): its far faces lie 0.5-1.5
@@ -252,14 +255,7 @@ TEST(NoPenetration, EveryPointOfTheWallFacesIsHeldAndWaterHalfASpacingOffIsFree)
 // at 0.80-0.85 s (none to 1.0 s without them), so they were taken out. The dynamic
 // boundary's pressure keeps water about a spacing off these faces, so the strips matter only
 // in impacts on the box's far edges.
-TEST(NoPenetration, DISABLED_EveryPointOfTheDynamicBoundarysBoxIsHeld) {
-  for (const double dp : {0.03, 0.0183}) {
-    const Coverage r = face_coverage("dynamic", dp);
-    EXPECT_EQ(r.bare, 0) << "dp = " << dp;
-    EXPECT_EQ(r.free_held, 0) << "dp = " << dp;
-    EXPECT_EQ(r.bulge, 0) << "dp = " << dp;
-  }
-}
+TEST(NoPenetration, DISABLED_EveryPointOfTheDynamicBoundarysBoxIsHeld) { expect_full_coverage("dynamic"); }
 
 // A sloping mesh bed (z = 0.02 + 0.25 x, its lattice points at every distance behind the
 // surface): every point of it is held, and water half a spacing above it is free. A
