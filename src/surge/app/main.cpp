@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -50,6 +51,82 @@ int fail_usage(const std::string& msg) {
   return 2;
 }
 
+// The arguments of run, check and restart.
+struct CaseCommand {
+  std::string case_path, out_dir;
+  surge::io::Overrides sets;
+  int threads = 0;
+  bool quiet = false;
+};
+
+// Parses args[1..] of `cmd` into `out`; a usage message when they do not fit.
+std::optional<std::string> parse_case_command(const std::string& cmd, const std::vector<std::string>& args,
+                                              CaseCommand& out) {
+  const bool runs = cmd == "run" || cmd == "restart";
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const std::string* v = i + 1 < args.size() ? &args[i + 1] : nullptr; // the option's value, if any
+    if (a == "--set") {
+      if (!v) return "--set needs KEY=VALUE";
+      out.sets.push_back(*v);
+      ++i;
+    } else if (a == "--out" && runs) {
+      if (!v) return "--out needs a folder";
+      out.out_dir = *v;
+      ++i;
+    } else if (a == "--threads" && runs) {
+      char* end = nullptr;
+      const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
+      if (!v || *end != '\0' || n < 1 || n > 4096) return "--threads needs a positive integer";
+      out.threads = static_cast<int>(n);
+      ++i;
+    } else if (a == "--quiet" && runs) {
+      out.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return "unknown option '" + a + "'";
+    } else if (out.case_path.empty()) {
+      out.case_path = a;
+    } else {
+      return "more than one case file given";
+    }
+  }
+  if (out.case_path.empty()) return cmd == "restart" ? "no output folder given" : "no case file given";
+  if (cmd == "restart") {
+    if (!out.out_dir.empty()) return "restart writes into the folder it continues; --out is not allowed";
+    out.out_dir = out.case_path;
+    out.case_path = out.out_dir + "/case.yaml";
+  }
+  return std::nullopt;
+}
+
+// Runs or checks the case; the exit code (README: 0, 2 bad input, 3 diverged, 130, 1).
+int case_command(const std::string& cmd, const CaseCommand& a, bool root) {
+  try {
+    const surge::Case c = surge::io::read_case(a.case_path, a.sets);
+    if (cmd == "check") return root ? surge::sim::check(c) : 0;
+    surge::par::set_threads(a.threads);
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    surge::sim::RunOptions opt;
+    opt.out_dir = a.out_dir.empty() ? "out/" + c.name : a.out_dir;
+    opt.stop = &g_stop;
+    opt.progress_tty = isatty(STDERR_FILENO) != 0;
+    opt.quiet = a.quiet || !root;
+    opt.restart = cmd == "restart";
+    return surge::sim::run(c, opt);
+  } catch (const surge::InputError& e) {
+    // Input is read alike by every process, so every process stops here with the same
+    // error: rank 0 says it.
+    if (surge::domain::comm::rank() == 0) std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    // Possibly seen by one process only: end them all rather than leave any waiting.
+    std::fprintf(stderr, "error (process %d): %s\n", surge::domain::comm::rank(), e.what());
+    if (surge::domain::comm::size() > 1) surge::domain::comm::abort(1);
+    return 1;
+  }
+}
+
 // The command, on every process of a distributed run (mpirun -n N surge run ...).
 int surge_main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -75,72 +152,9 @@ int surge_main(int argc, char** argv) {
     return 0;
   }
   if (cmd != "run" && cmd != "check" && cmd != "restart") return fail_usage("unknown command '" + cmd + "'");
-  const bool runs = cmd == "run" || cmd == "restart";
-  std::string case_path, out_dir;
-  surge::io::Overrides sets;
-  int threads = 0;
-  bool quiet = false;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](const char* opt) -> const std::string* {
-      if (i + 1 >= args.size()) return nullptr;
-      (void)opt;
-      return &args[++i];
-    };
-    if (a == "--set") {
-      const auto* v = value("--set");
-      if (!v) return fail_usage("--set needs KEY=VALUE");
-      sets.push_back(*v);
-    } else if (a == "--out" && runs) {
-      const auto* v = value("--out");
-      if (!v) return fail_usage("--out needs a folder");
-      out_dir = *v;
-    } else if (a == "--threads" && runs) {
-      const auto* v = value("--threads");
-      char* end = nullptr;
-      const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
-      if (!v || *end != '\0' || n < 1 || n > 4096) return fail_usage("--threads needs a positive integer");
-      threads = static_cast<int>(n);
-    } else if (a == "--quiet" && runs) {
-      quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      return fail_usage("unknown option '" + a + "'");
-    } else if (case_path.empty()) {
-      case_path = a;
-    } else {
-      return fail_usage("more than one case file given");
-    }
-  }
-  if (case_path.empty()) return fail_usage(cmd == "restart" ? "no output folder given" : "no case file given");
-  if (cmd == "restart") {
-    if (!out_dir.empty()) return fail_usage("restart writes into the folder it continues; --out is not allowed");
-    out_dir = case_path;
-    case_path = out_dir + "/case.yaml";
-  }
-  try {
-    const surge::Case c = surge::io::read_case(case_path, sets);
-    if (cmd == "check") return root ? surge::sim::check(c) : 0;
-    surge::par::set_threads(threads);
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    surge::sim::RunOptions opt;
-    opt.out_dir = out_dir.empty() ? "out/" + c.name : out_dir;
-    opt.stop = &g_stop;
-    opt.progress_tty = isatty(STDERR_FILENO) != 0;
-    opt.quiet = quiet || !root;
-    opt.restart = cmd == "restart";
-    return surge::sim::run(c, opt);
-  } catch (const surge::InputError& e) {
-    // Input is read alike by every process, so every process stops here with the same
-    // error: rank 0 says it.
-    if (surge::domain::comm::rank() == 0) std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    // Possibly seen by one process only: end them all rather than leave any waiting.
-    std::fprintf(stderr, "error (process %d): %s\n", surge::domain::comm::rank(), e.what());
-    if (surge::domain::comm::size() > 1) surge::domain::comm::abort(1);
-    return 1;
-  }
+  CaseCommand a;
+  if (const auto bad = parse_case_command(cmd, args, a)) return fail_usage(*bad);
+  return case_command(cmd, a, root);
 }
 
 } // namespace
