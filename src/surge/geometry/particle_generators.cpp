@@ -38,6 +38,16 @@ std::vector<double> lattice_stretched(double lo, double hi, double dp) {
   for (long i = 0; i < n; ++i) v.push_back(lo + (static_cast<double>(i) + 0.5) * s);
   return v;
 }
+// The distance from the face at `f` (lo or hi) to the nearest coordinate of the lattice
+// laid in [lo, hi] (lattice_stretched when `fit`, else lattice; the same expressions), without
+// building it: one of its ends. Infinite for an empty lattice.
+double first_layer(double lo, double hi, double dp, bool fit, double f) {
+  const long n = fit ? stretched_count(lo, hi, dp) : static_cast<long>(std::floor((hi - lo) / dp + 1e-3));
+  if (n < 1) return 1e300;
+  const double s = fit ? stretched_spacing(lo, hi, dp) : dp;
+  const double front = lo + 0.5 * s, back = lo + (static_cast<double>(n - 1) + 0.5) * s;
+  return std::min(std::fabs(front - f), std::fabs(back - f));
+}
 bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.open.end(), f) != w.open.end(); }
 
 // Signed distance to the closest triangle, positive on the side the normals point to;
@@ -218,13 +228,10 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
   // fitted lattice, between half and one and a half on the case's (at the box's far faces).
   double nearest = 1e300;
   for (int k = 0; k < 3; ++k) {
-    const auto coords = fit ? lattice_stretched(b.min[k], b.max[k], dp) : lattice(b.min[k], b.max[k], dp);
     for (const double f : {b.min[k], b.max[k]}) {
       const double d = std::fabs(p[k] - f);
       nearest = std::min(nearest, d);
-      double first = 1e300;
-      for (const double x : coords) first = std::min(first, std::fabs(x - f));
-      if (!(d < first + 1e-6 * dp)) continue;
+      if (!(d < first_layer(b.min[k], b.max[k], dp, fit, f) + 1e-6 * dp)) continue;
       Vec3d o{};
       o[k] = 2 * (f - p[k]);
       if (norm(o - mirror) > 1e-9 * dp) r.faces.push_back(o);

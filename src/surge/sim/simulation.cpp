@@ -109,6 +109,44 @@ double first_dt(const Case& c) {
   return c.sph.cfl * std::min(std::sqrt(h / c.g()), h / c0);
 }
 
+// surge check's warnings (resolution, kernel, Mach number, the paper's guidance for
+// spheres); returns how many were printed.
+int check_warnings(const Case& c, const sph::InitialState& init, const CoupledParts* cp, double water_share) {
+  int warnings = 0;
+  auto warn = [&](const std::string& w) {
+    std::printf("warning     %s\n", w.c_str());
+    ++warnings;
+  };
+  if (water_share < 0.98 && init.fluid_dropped_by_walls == 0)
+    warn("the fluid boxes hold " + fmt(100 * water_share) +
+         " % of their volume in water: their sizes are not whole numbers of dp (choose dp dividing them)");
+  if (c.sph.h_over_dp < 1.2)
+    warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
+  if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
+  if (!c.fluid.empty() && c.dp > c.water_depth() / 25)
+    warn("dp is coarser than 1/25 of the water depth (" + fmt(c.water_depth()) +
+         " m): the paper's guidance is dp <= depth/25");
+  if (cp) {
+    // Paper sect. 4: loose spheres need dp <= D/20, dense assemblies dp <= D/6 (D/8 better).
+    const auto& sp = cp->setup.spheres;
+    double dmin = 1e300;
+    for (const auto& x : sp) dmin = std::min(dmin, 2.0 * x.radius);
+    const bool dense = touching_share(sp) >= 0.5;
+    // Radii are stored as Real (float by default): D = 0.06 comes back as 0.0599999987, so
+    // dp = D/20 exactly must pass; a relative margin of 1e-5 covers float rounding.
+    const double ratio = c.dp / dmin, slack = 1 + 1e-5;
+    if (dense && ratio > slack / 6)
+      warn("dp = D/" + fmt(1 / ratio) +
+           " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
+    else if (!dense && ratio > slack / 20)
+      warn("dp = D/" + fmt(1 / ratio) +
+           " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
+           "and drag (gap effect)");
+  }
+  if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
+  return warnings;
+}
+
 } // namespace
 
 int check(const Case& c) {
@@ -157,39 +195,7 @@ int check(const Case& c) {
   std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow "
               "accelerates)\n",
               hms(steps * n / assumed_particle_steps_per_s).c_str(), assumed_particle_steps_per_s);
-  int warnings = 0;
-  auto warn = [&](const std::string& w) {
-    std::printf("warning     %s\n", w.c_str());
-    ++warnings;
-  };
-  if (water_share < 0.98 && init.fluid_dropped_by_walls == 0)
-    warn("the fluid boxes hold " + fmt(100 * water_share) +
-         " % of their volume in water: their sizes are not whole numbers of dp (choose dp dividing them)");
-  if (c.sph.h_over_dp < 1.2)
-    warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
-  if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
-  if (!c.fluid.empty() && c.dp > c.water_depth() / 25)
-    warn("dp is coarser than 1/25 of the water depth (" + fmt(c.water_depth()) +
-         " m): the paper's guidance is dp <= depth/25");
-  if (cp) {
-    // Paper sect. 4: loose spheres need dp <= D/20, dense assemblies dp <= D/6 (D/8 better).
-    const auto& sp = cp->setup.spheres;
-    double dmin = 1e300;
-    for (const auto& x : sp) dmin = std::min(dmin, 2.0 * x.radius);
-    const bool dense = touching_share(sp) >= 0.5;
-    // Radii are stored as Real (float by default): D = 0.06 comes back as 0.0599999987, so
-    // dp = D/20 exactly must pass; a relative margin of 1e-5 covers float rounding.
-    const double ratio = c.dp / dmin, slack = 1 + 1e-5;
-    if (dense && ratio > slack / 6)
-      warn("dp = D/" + fmt(1 / ratio) +
-           " for a dense assembly of spheres: the paper's guidance is dp <= D/6 (D/8 better)");
-    else if (!dense && ratio > slack / 20)
-      warn("dp = D/" + fmt(1 / ratio) +
-           " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
-           "and drag (gap effect)");
-  }
-  if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
-  if (warnings == 0) std::printf("warnings    none\n");
+  if (check_warnings(c, init, cp ? &*cp : nullptr, water_share) == 0) std::printf("warnings    none\n");
   return 0;
 }
 

@@ -15,6 +15,23 @@ Real still_water_density(const Case& c, const TaitEos& eos, const FluidRegion& f
   return eos.density(static_cast<Real>(c.sph.rho0 * c.g() * (f.box.max.z - p.z)));
 }
 
+namespace {
+// InitialState::fluid_lo / fluid_hi.
+std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init) {
+  Vec3 lo{}, hi = Vec3(c.domain.max - c.domain.min);
+  const auto half = static_cast<Real>(c.dp / 2);
+  for (std::size_t i = 0; i < init.particles.size(); ++i) {
+    if (init.particles.kind[i] != static_cast<std::uint8_t>(Kind::Wall)) continue;
+    const Vec3 p = init.particles.pos[i];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::fmin(lo[k], p[k] - half);
+      hi[k] = std::fmax(hi[k], p[k] + half);
+    }
+  }
+  return {lo, hi};
+}
+} // namespace
+
 InitialState build_initial_state(const Case& c) {
   InitialState s;
   s.origin = c.domain.min;
@@ -75,20 +92,6 @@ InitialState build_initial_state(const Case& c) {
     throw InputError(c.source, 0, "dp", "more than 2e9 particles; increase dp");
   std::tie(s.fluid_lo, s.fluid_hi) = fluid_region(c, s);
   return s;
-}
-
-std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init) {
-  Vec3 lo{}, hi = Vec3(c.domain.max - c.domain.min);
-  const auto half = static_cast<Real>(c.dp / 2);
-  for (std::size_t i = 0; i < init.particles.size(); ++i) {
-    if (init.particles.kind[i] != static_cast<std::uint8_t>(Kind::Wall)) continue;
-    const Vec3 p = init.particles.pos[i];
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::fmin(lo[k], p[k] - half);
-      hi[k] = std::fmax(hi[k], p[k] + half);
-    }
-  }
-  return {lo, hi};
 }
 
 } // namespace surge::sph

@@ -28,7 +28,10 @@ struct InitialState {
   std::vector<Vec3> boundary_ghost;
   std::vector<WallReach> wall_reach; // per wall particle (id - first_boundary_id < n_wall)
   std::vector<Vec3> extra_faces;     // the faces of WallReach::extra
-  Vec3 fluid_lo{}, fluid_hi{};       // where fluid may be (fluid_region)
+  // Where fluid may be (local coordinates): the case's domain, grown to hold every wall
+  // particle's cell. Fluid beyond it is removed as having left the domain; fluid that went
+  // into a wall's layers stays and is counted as a leak (sim::WallLeaks), not deleted.
+  Vec3 fluid_lo{}, fluid_hi{};
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)
@@ -38,10 +41,5 @@ struct InitialState {
 
 // Builds fluid and wall particles from the case (meshes are read here).
 InitialState build_initial_state(const Case& c);
-
-// Where fluid may be (local coordinates): the case's domain, grown to hold every wall
-// particle's cell. Fluid beyond it is removed as having left the domain; fluid that went
-// into a wall's layers stays and is counted as a leak (sim::WallLeaks), not deleted.
-[[nodiscard]] std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init);
 
 } // namespace surge::sph

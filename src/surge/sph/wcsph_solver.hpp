@@ -54,7 +54,7 @@ public:
   // The wall model's offsets that turn with the bodies (execution space), by
   // id - first_boundary_id(): the coupling rewrites those of body particles as their
   // spheres turn. Null unless the model keeps them (mdbc).
-  [[nodiscard]] Vec3* ghost_offsets() { return boundary_->body_offsets(); }
+  [[nodiscard]] Vec3* ghost_offsets() { return boundary_->ghost_offsets(); }
   [[nodiscard]] std::uint32_t first_boundary_id() const { return first_boundary_id_; }
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
@@ -83,7 +83,7 @@ private:
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
-  Vec3 dom_lo_{}, dom_hi_{}; // where fluid may be (fluid_region)
+  Vec3 dom_lo_{}, dom_hi_{}; // where fluid may be (InitialState::fluid_lo / fluid_hi)
   Distribution dist_;
   bool fresh_ = false; // rates match positions
   long steps_ = 0;

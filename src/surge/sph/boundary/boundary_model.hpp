@@ -24,13 +24,10 @@ public:
   // How much further than one kernel support a boundary particle's density reads
   // (a distributed run's halo grows by it).
   [[nodiscard]] virtual double extra_reach() const = 0;
-  // Per boundary particle, by id - first boundary id: offsets in the execution space that
-  // turn with a body particle's sphere (the coupling rewrites the body ones); null if the
-  // model keeps none.
-  [[nodiscard]] virtual Vec3* body_offsets() = 0;
-  // Its ghost offsets (wall then body particles), for the no-penetration condition to share;
-  // null if it keeps none.
-  [[nodiscard]] virtual const Vec3* ghost_offsets() const = 0;
+  // Its ghost offsets in the execution space, per boundary particle by id - first boundary
+  // id (wall then body particles): the coupling turns the body ones with their spheres, the
+  // no-penetration condition reads the wall ones; null if the model keeps none.
+  [[nodiscard]] virtual Vec3* ghost_offsets() = 0;
   // Bytes it holds in the execution space.
   [[nodiscard]] virtual std::size_t bytes() const = 0;
 };

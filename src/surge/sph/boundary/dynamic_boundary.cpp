@@ -11,8 +11,7 @@ class DynamicBoundary final : public BoundaryModel {
 public:
   void prepare(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&) override {}
   [[nodiscard]] double extra_reach() const override { return 0; }
-  [[nodiscard]] Vec3* body_offsets() override { return nullptr; }
-  [[nodiscard]] const Vec3* ghost_offsets() const override { return nullptr; }
+  [[nodiscard]] Vec3* ghost_offsets() override { return nullptr; }
   [[nodiscard]] std::size_t bytes() const override { return 0; }
 };
 } // namespace

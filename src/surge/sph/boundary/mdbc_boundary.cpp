@@ -39,8 +39,7 @@ public:
   // The ghost node lies up to the longest offset away, and its density reads a kernel
   // support around it.
   [[nodiscard]] double extra_reach() const override { return longest_ + support_; }
-  [[nodiscard]] Vec3* body_offsets() override { return offset_.data(); }
-  [[nodiscard]] const Vec3* ghost_offsets() const override { return offset_.data(); }
+  [[nodiscard]] Vec3* ghost_offsets() override { return offset_.data(); }
   [[nodiscard]] std::size_t bytes() const override { return offset_.bytes(); }
 
 private:
