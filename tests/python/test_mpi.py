@@ -1,6 +1,7 @@
 """Distributed runs (MPI build): the same case on 1, 2 and 3 processes gives the same
 bits -- gauges, every particle file, the checkpoint -- on a dam break, on the coupled
-slide at coarse resolution and on Archimedes with mDBC and the symplectic integrator;
+slide at coarse resolution, on Archimedes with mDBC and the symplectic integrator and on
+the DEM-only column;
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -109,6 +110,21 @@ arch = runs_on([1, 3], "archimedes", os.path.join(CASES, "archimedes.yaml"),
                ["--set", "time.end=0.02", "--set", "time.output_every=0.01", "--set", "sph.boundary=mdbc",
                 "--set", "sph.integrator=symplectic"])
 same_files(arch[1], arch[3], "Archimedes with mdbc and symplectic, 1 and 3 processes")
+
+# --- a DEM-only case: every process advances the same spheres, rank 0 writes; a
+# checkpoint written by 3 processes continues on 1 as the straight run
+col_sets = ["--set", "time.end=0.05", "--set", "time.output_every=0.025"]
+col = runs_on([1, 2, 3], "column", os.path.join(CASES, "column_collapse.yaml"), col_sets)
+for n in (2, 3):
+    same_files(col[1], col[n], f"DEM-only column, 1 and {n} processes")
+check(summary(col[3])["distributed"]["ranks"] == 3, "DEM-only summary.json gives the process count")
+out = os.path.join(WORK, "column_restart")
+r = mpi(3, ["run", os.path.join(CASES, "column_collapse.yaml"), "--out", out, "--quiet", "--set", "time.end=0.025",
+            "--set", "time.output_every=0.025"])
+check(r.returncode == 0, f"DEM-only column to t = 0.025 s on 3 processes (exit {r.returncode})")
+r = mpi(1, ["restart", out, "--quiet", "--set", "time.end=0.05"])
+check(r.returncode == 0, f"DEM-only restart on 1 process (exit {r.returncode}: {r.stderr[-300:]})")
+same_files(col[1], out, "DEM-only column written by 3 processes, continued by 1, against 1 straight")
 
 # --- coupling.force_sum: per_sphere (per-process sphere sums added in rank order): equal to
 # one process to round-off (relative 1e-5), not necessarily bitwise; the fixed sphere leaves

@@ -2,6 +2,7 @@
 #include "surge/core/error.hpp"
 #include "surge/core/version.hpp"
 #include "surge/dem/dem_solver.hpp"
+#include "surge/domain/comm.hpp"
 #include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/stl_mesh.hpp"
 #include "surge/io/atomic_file.hpp"
@@ -46,7 +47,10 @@ int check_dem(const Case& c) {
 
 namespace {
 
-// Spheres only, on one process, at the fixed step of the DEM.
+// Spheres only, at the fixed step of the DEM. In a distributed run every process
+// advances the same DEM (as in a coupled run: it is deterministic, so all hold the same
+// bits without sending any) and rank 0 writes; the processes agree on Ctrl-C and on
+// wall-clock checkpoints. The DEM's work is not split among them.
 class DemStepper final : public Stepper {
 public:
   DemStepper(const Case& c, const RunOptions& opt, const io::Checkpoint* ck)
@@ -68,17 +72,26 @@ public:
       }
       steps_ = ck->steps;
     }
+    if (!root()) return;
     std::filesystem::create_directories(out_ / "particles");
     io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
   }
 
   double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
-    (void)dt_max, (void)t, (void)stop, (void)failure; // one process; non-finite states are caught at outputs
-    solver_.step(dt_); // a fixed step: outputs fall on the first step at or after their time
+    (void)dt_max, (void)t, (void)failure; // non-finite states are caught at outputs
+    solver_.step(dt_);                    // a fixed step: outputs fall on the first step at or after their time
     ++steps_;
+    if (domain::comm::size() > 1) {
+      double flags[2] = {stop ? 1.0 : 0.0, checkpoint_due ? 1.0 : 0.0};
+      domain::comm::sum(flags, 2);
+      stop = flags[0] > 0;
+      checkpoint_due = flags[1] > 0;
+    }
     checkpoint_due = checkpoint_due && solver_.finite(); // never a checkpoint of a diverged state
     return static_cast<double>(dt_);
   }
+
+  [[nodiscard]] bool root() const override { return domain::comm::rank() == 0; }
 
   [[nodiscard]] long steps() const override { return steps_; }
   [[nodiscard]] std::vector<std::string> gauge_names() const override {
@@ -104,6 +117,7 @@ public:
         failure = "non-finite sphere position at t = " + std::to_string(t) + " s; try a smaller dem.dt_factor";
         return false;
       }
+    if (!root()) return true;
     char name[64];
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
     io::write_spheres_vtp((out_ / "particles" / name).string(), f, setup_.origin);
@@ -124,12 +138,14 @@ public:
   }
 
   void write_summary(const std::string& status, int code, const std::string& message, const LoopClock& k) override {
+    if (!root()) return;
     const double n = static_cast<double>(setup_.spheres.size());
     std::ostringstream j;
     j.precision(10);
     j << "{\n  \"name\": \"" << c_.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n  \"backend\": \""
       << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n  \"status\": \"" << status
       << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << json_escape(message) << "\",\n"
+      << "  \"distributed\": {\"ranks\": " << domain::comm::size() << ", \"dem\": \"every process\"},\n"
       << "  \"particles\": {\"fluid\": 0, \"wall\": 0, \"body\": 0, \"sphere\": " << setup_.spheres.size() << "},\n"
       << "  \"dem\": {\"dt\": " << dt_ << ", \"bonds\": " << bonds_ << ", \"broken_bonds\": " << solver_.broken_bonds()
       << "},\n  \"steps\": " << k.steps << ",\n  \"simulated_time\": " << k.t << ",\n  \"wall_seconds\": " << k.wall

@@ -430,8 +430,7 @@ private:
 } // namespace
 
 int run(const Case& c, const RunOptions& opt) {
-  // DEM-only cases are not distributed: rank 0 runs them.
-  if (c.dem.active() && !c.coupled()) return DistributedRun::root() ? run_dem(c, opt) : 0;
+  if (c.dem.active() && !c.coupled()) return run_dem(c, opt);
   const auto wall0 = Clock::now();
   std::optional<io::Checkpoint> ck;
   if (opt.restart) ck = io::read_checkpoint((std::filesystem::path(opt.out_dir) / "checkpoint.bin").string());
