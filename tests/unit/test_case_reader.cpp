@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -57,6 +59,23 @@ TEST(CaseReader, OverridesAndRoundTrip) {
   const Case d = io::read_case_text(io::to_yaml(c), "t.yaml");
   EXPECT_EQ(io::to_yaml(c), io::to_yaml(d));
   EXPECT_DOUBLE_EQ(d.sph.alpha, 0.05);
+}
+
+// Every case shipped reads back from the case.yaml a run writes: the same case (every
+// list item kind: box and mesh walls, each gauge type, DEM walls, box, mesh and CSV packs).
+TEST(CaseReader, EveryShippedCaseRoundTrips) {
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(std::string(SURGE_SOURCE_DIR) + "/cases")) {
+    if (f.path().extension() != ".yaml") continue;
+    const Case c = io::read_case(f.path().string());
+    const std::string once = io::to_yaml(c);
+    const Case d = io::read_case_text(once, f.path().string()); // relative files resolve from the same folder
+    EXPECT_EQ(once, io::to_yaml(d)) << f.path();
+    EXPECT_EQ(c.gauges.size(), d.gauges.size()) << f.path();
+    EXPECT_EQ(c.dem.packs.size(), d.dem.packs.size()) << f.path();
+    ++n;
+  }
+  EXPECT_GE(n, 11);
 }
 
 TEST(CaseReader, MalformedYaml) { expect_error("name: x\ndp: [0.01\n", 0, "", "malformed YAML"); }
@@ -169,6 +188,10 @@ TEST(CaseSchema, EveryRangeAndChoiceIsCheckedWithTheKeyNamed) {
   expect_schema_checks(test::tank_case(0.01), "coupling.", "coupling.", io::coupling_fields());
   expect_schema_checks(dem_case, "dem.", "dem.", io::dem_fields());
   expect_schema_checks(dem_case, "dem.materials.0.", "dem.materials[].", io::material_fields());
+  expect_schema_checks(dem_case, "dem.packs.0.", "dem.packs[].", io::pack_fields());
+  expect_schema_checks(test::tank_case(0.01), "fluid.0.", "fluid[].", io::fluid_fields());
+  expect_schema_checks(test::tank_case(0.01), "walls.0.", "walls[].", io::wall_fields());
+  expect_schema_checks(test::hydrostatic_tank_case(), "gauges.1.", "gauges[].", io::gauge_fields());
   // A value on the closed end of a range is allowed (dem.dt_factor = 0.5, sph.alpha = 0).
   EXPECT_NO_THROW((void)io::read_case_text(dem_case, "ok.yaml", {"dem.dt_factor=0.5", "sph.alpha=0"}));
 }

@@ -75,7 +75,7 @@ struct GaugeSpec {
   std::string name;
   GaugeType type = GaugeType::Height;
   double x = 0, y = 0;          // height gauges
-  bool surface_highest = false; // height: highest wet point on the line (spray included), not the column top
+  std::string surface = "column"; // height: column (top of the water standing on the bed) or highest (wet point)
   Vec3d at{};                   // pressure / velocity gauges
   std::string component = "z";  // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
   std::string wall;             // force gauges: name of the wall

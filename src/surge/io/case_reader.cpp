@@ -187,13 +187,15 @@ void read_fields(const Reader& r, const YAML::Node& n, const std::string& path, 
           auto& v = s.*m;
           using V = std::decay_t<decltype(v)>;
           v = r.get(n, path, f.key, v);
-          if constexpr (std::is_same_v<V, std::string>) {
+          if constexpr (std::is_same_v<V, Vec3d> || std::is_same_v<V, bool>) {
+            return; // any vector, any truth value
+          } else if constexpr (std::is_same_v<V, std::string>) {
             if (f.choices.empty() || std::find(f.choices.begin(), f.choices.end(), v) != f.choices.end()) return;
             std::string list;
             for (std::size_t i = 0; i < f.choices.size(); ++i)
               list += (i == 0 ? "" : (i + 1 == f.choices.size() ? " or " : ", ")) + f.choices[i];
             r.fail(n[f.key], key, "must be " + list + " (" + f.help + ")");
-          } else if constexpr (!std::is_same_v<V, bool>) {
+          } else {
             if (!f.range.holds(static_cast<double>(v))) r.fail(n[f.key], key, f.range.message());
           }
         },
@@ -217,6 +219,115 @@ Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
   return b;
 }
 
+// An absolute path for a file named in the case (relative to the case file's folder), so
+// that the run folder's case.yaml names the same files wherever `surge restart` runs.
+std::string resolve_file(const Reader& r, const YAML::Node& n, const std::string& key, const char* what) {
+  std::filesystem::path p(r.as<std::string>(n, key));
+  if (p.is_relative()) p = case_dir(r.file()) / p;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(p, ec)) r.fail(n, key, std::string(what) + "'" + p.string() + "' not found");
+  return p.string();
+}
+
+// The items of a list under `key` of `parent`, each with its path ("walls.2"); nothing
+// when the key is absent or empty.
+template <class F>
+void for_each_item(const Reader& r, const YAML::Node& parent, const std::string& key, const char* expected, F&& f) {
+  const YAML::Node list = parent[key.substr(key.rfind('.') + 1)];
+  if (!list.IsDefined() || list.IsNull()) return;
+  if (!list.IsSequence()) r.fail(list, key, expected);
+  for (std::size_t i = 0; i < list.size(); ++i) f(list[i], key + "." + std::to_string(i));
+}
+
+DemMaterialSpec parse_material(const Reader& r, const YAML::Node& m, const std::string& path,
+                               const std::vector<DemMaterialSpec>& before) {
+  r.check_keys(m, path, keys_under("dem.materials[]"));
+  DemMaterialSpec ms;
+  ms.line = m.Mark().line + 1;
+  ms.name = r.require<std::string>(m, path, "name");
+  for (const auto& other : before)
+    if (other.name == ms.name) r.fail(m["name"], path + ".name", "duplicate material name");
+  read_fields(r, m, path, material_fields(), ms);
+  auto pair = [&](const char* key, double& k, double& kmax) {
+    if (!m[key].IsDefined()) return;
+    const auto v = m[key];
+    if (!v.IsSequence() || v.size() != 2) r.fail(v, path + "." + key, "expected [stiffness factor, cap factor]");
+    k = r.as<double>(v[0], path + "." + key);
+    kmax = r.as<double>(v[1], path + "." + key);
+    if (k < 0 || kmax < 0) r.fail(v, path + "." + key, "factors must not be negative");
+  };
+  pair("rolling", ms.k_roll, ms.k_roll_max);
+  pair("twisting", ms.k_twist, ms.k_twist_max);
+  if (const auto b = m["bond"]; b.IsDefined()) {
+    r.check_keys(b, path + ".bond", {"cn", "cs"});
+    ms.bonded = true;
+    ms.bond_cn = r.require<double>(b, path + ".bond", "cn");
+    ms.bond_cs = r.require<double>(b, path + ".bond", "cs");
+    if (ms.bond_cn < 0 || ms.bond_cs < 0) r.fail(b, path + ".bond", "strengths must not be negative");
+  }
+  return ms;
+}
+
+// The index of the material an item names.
+int material_of(const Reader& r, const YAML::Node& n, const std::string& path, const DemConfig& dem) {
+  const auto name = r.require<std::string>(n, path, "material");
+  for (std::size_t k = 0; k < dem.materials.size(); ++k)
+    if (dem.materials[k].name == name) return static_cast<int>(k);
+  r.fail(n["material"], path + ".material", "no DEM material named '" + name + "'");
+}
+
+DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::string& path, const DemConfig& dem) {
+  r.check_keys(w, path, keys_under("dem.walls[]"));
+  DemWallSpec ws;
+  read_fields(r, w, path, dem_wall_fields(), ws);
+  ws.line = w.Mark().line + 1;
+  ws.material = material_of(r, w, path, dem);
+  if (w["plane"].IsDefined() == w["mesh"].IsDefined())
+    r.fail(w, path, "a DEM wall needs exactly one of 'plane' or 'mesh'");
+  if (const auto pl = w["plane"]; pl.IsDefined()) {
+    r.check_keys(pl, path + ".plane", {"point", "normal"});
+    ws.point = r.require<Vec3d>(pl, path + ".plane", "point");
+    ws.normal = r.require<Vec3d>(pl, path + ".plane", "normal");
+    if (!(norm(ws.normal) > 0)) r.fail(pl["normal"], path + ".plane.normal", "must not be zero");
+  } else {
+    ws.is_mesh = true;
+    ws.mesh_path = resolve_file(r, w["mesh"], path + ".mesh", "file ");
+  }
+  return ws;
+}
+
+DemPackSpec parse_pack(const Reader& r, const YAML::Node& pk, const std::string& path, const Case& c) {
+  r.check_keys(pk, path, keys_under("dem.packs[]"));
+  DemPackSpec ps;
+  ps.line = pk.Mark().line + 1;
+  ps.material = material_of(r, pk, path, c.dem);
+  read_fields(r, pk, path, pack_fields(), ps);
+  const int regions =
+      (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) + (pk["csv"].IsDefined() ? 1 : 0);
+  if (regions != 1) r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL) or 'csv'");
+  if (pk["csv"].IsDefined()) {
+    if (ps.random_count > 0 || ps.jitter > 0)
+      r.fail(pk, path, "'random' and 'jitter' apply to box and mesh packs, not to a CSV list");
+    ps.from_csv = true;
+    ps.csv = resolve_file(r, pk["csv"], path + ".csv", "file ");
+    return ps;
+  }
+  if (pk["box"].IsDefined()) {
+    ps.box = parse_box(r, pk["box"], path + ".box");
+    if (!c.domain.contains(ps.box.min, 1e-9) || !c.domain.contains(ps.box.max, 1e-9))
+      r.fail(pk["box"], path + ".box", "the pack lies (partly) outside the domain");
+  } else {
+    ps.mesh_path = resolve_file(r, pk["mesh"], path + ".mesh", "file ");
+  }
+  ps.radius = r.require<double>(pk, path, "radius");
+  if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+  if (pk["box"].IsDefined())
+    for (int k = 0; k < 3; ++k)
+      if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)
+        r.fail(pk["box"], path + ".box", "the box is thinner than one sphere diameter");
+  return ps;
+}
+
 void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
   r.check_keys(d, "dem", keys_under("dem"));
   auto& dem = c.dem;
@@ -224,117 +335,201 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
   const YAML::Node mats = d["materials"];
   if (!mats.IsDefined() || !mats.IsSequence() || mats.size() == 0)
     r.fail(mats.IsDefined() ? mats : d, "dem.materials", "a list of at least one material is required");
-  for (std::size_t i = 0; i < mats.size(); ++i) {
-    const std::string path = "dem.materials." + std::to_string(i);
-    const YAML::Node m = mats[i];
-    r.check_keys(m, path, keys_under("dem.materials[]"));
-    DemMaterialSpec ms;
-    ms.line = m.Mark().line + 1;
-    ms.name = r.require<std::string>(m, path, "name");
-    for (const auto& other : dem.materials)
-      if (other.name == ms.name) r.fail(m["name"], path + ".name", "duplicate material name");
-    read_fields(r, m, path, material_fields(), ms);
-    auto pair = [&](const char* key, double& k, double& kmax) {
-      if (!m[key].IsDefined()) return;
-      const auto v = m[key];
-      if (!v.IsSequence() || v.size() != 2) r.fail(v, path + "." + key, "expected [stiffness factor, cap factor]");
-      k = r.as<double>(v[0], path + "." + key);
-      kmax = r.as<double>(v[1], path + "." + key);
-      if (k < 0 || kmax < 0) r.fail(v, path + "." + key, "factors must not be negative");
-    };
-    pair("rolling", ms.k_roll, ms.k_roll_max);
-    pair("twisting", ms.k_twist, ms.k_twist_max);
-    if (const auto b = m["bond"]; b.IsDefined()) {
-      r.check_keys(b, path + ".bond", {"cn", "cs"});
-      ms.bonded = true;
-      ms.bond_cn = r.require<double>(b, path + ".bond", "cn");
-      ms.bond_cs = r.require<double>(b, path + ".bond", "cs");
-      if (ms.bond_cn < 0 || ms.bond_cs < 0) r.fail(b, path + ".bond", "strengths must not be negative");
+  for_each_item(r, d, "dem.materials", "", [&](const YAML::Node& m, const std::string& path) {
+    dem.materials.push_back(parse_material(r, m, path, dem.materials));
+  });
+  for_each_item(r, d, "dem.walls", "expected a list of walls", [&](const YAML::Node& w, const std::string& path) {
+    dem.walls.push_back(parse_dem_wall(r, w, path, dem));
+  });
+  for_each_item(r, d, "dem.packs", "expected a list of sphere packs", [&](const YAML::Node& pk, const std::string& path) {
+    dem.packs.push_back(parse_pack(r, pk, path, c));
+  });
+}
+
+FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string& path, const Case& c) {
+  r.check_keys(f, path, keys_under("fluid[]"));
+  FluidRegion reg;
+  if (!f["box"].IsDefined()) r.fail(f, path + ".box", "is required");
+  reg.box = parse_box(r, f["box"], path + ".box");
+  read_fields(r, f, path, fluid_fields(), reg);
+  reg.line = f.Mark().line + 1;
+  if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
+    r.fail(f["box"], path + ".box", "fluid region lies (partly) outside the domain; enlarge domain or move the water");
+  const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-3); };
+  if (cells(0) < 1 || cells(1) < 1 || cells(2) < 1)
+    r.fail(f["box"], path + ".box", "fluid region is thinner than dp and would hold no particle");
+  return reg;
+}
+
+WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& path, std::size_t i, const Case& c) {
+  r.check_keys(w, path, keys_under("walls[]"));
+  WallSpec ws;
+  ws.name = r.get<std::string>(w, path, "name", "wall" + std::to_string(i));
+  ws.line = w.Mark().line + 1;
+  read_fields(r, w, path, wall_fields(), ws);
+  const bool has_box = w["box"].IsDefined(), has_mesh = w["mesh"].IsDefined();
+  if (has_box == has_mesh) r.fail(w, path, "a wall needs exactly one of 'box' or 'mesh'");
+  if (has_box) {
+    ws.box = parse_box(r, w["box"], path + ".box");
+    if (const auto o = w["open"]; o.IsDefined()) {
+      if (!o.IsSequence()) r.fail(o, path + ".open", "expected a list of faces, like [zmax]");
+      for (std::size_t k = 0; k < o.size(); ++k) ws.open.push_back(parse_face(r, o[k], path + ".open"));
     }
-    dem.materials.push_back(ms);
+  } else {
+    if (w["open"].IsDefined()) r.fail(w["open"], path + ".open", "'open' applies to box walls only");
+    // A solid mesh: everything behind its surface (negative signed distance) is wall,
+    // so no water is made there (a slope with ground under it).
+    ws.is_mesh = true;
+    ws.mesh = r.as<std::string>(w["mesh"], path + ".mesh");
+    ws.mesh_path = resolve_file(r, w["mesh"], path + ".mesh", "mesh file ");
   }
-  auto material = [&](const YAML::Node& n, const std::string& path) {
-    const auto name = r.require<std::string>(n, path, "material");
-    for (std::size_t k = 0; k < dem.materials.size(); ++k)
-      if (dem.materials[k].name == name) return static_cast<int>(k);
-    r.fail(n["material"], path + ".material", "no DEM material named '" + name + "'");
-  };
-  // Absolute: the run folder's case.yaml names the same files wherever `surge restart` runs.
-  const auto dir = case_dir(r.file());
-  auto resolve = [&](const YAML::Node& n, const std::string& key, const std::string& rel) {
-    std::filesystem::path p(rel);
-    if (p.is_relative()) p = dir / p;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec)) r.fail(n, key, "file '" + p.string() + "' not found");
-    return p.string();
-  };
-  if (const auto walls = d["walls"]; walls.IsDefined()) {
-    if (!walls.IsSequence()) r.fail(walls, "dem.walls", "expected a list of walls");
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-      const std::string path = "dem.walls." + std::to_string(i);
-      const YAML::Node w = walls[i];
-      r.check_keys(w, path, keys_under("dem.walls[]"));
-      DemWallSpec ws;
-      ws.name = r.get<std::string>(w, path, "name", "");
-      ws.line = w.Mark().line + 1;
-      ws.material = material(w, path);
-      if (w["plane"].IsDefined() == w["mesh"].IsDefined())
-        r.fail(w, path, "a DEM wall needs exactly one of 'plane' or 'mesh'");
-      if (const auto pl = w["plane"]; pl.IsDefined()) {
-        r.check_keys(pl, path + ".plane", {"point", "normal"});
-        ws.point = r.require<Vec3d>(pl, path + ".plane", "point");
-        ws.normal = r.require<Vec3d>(pl, path + ".plane", "normal");
-        if (!(norm(ws.normal) > 0)) r.fail(pl["normal"], path + ".plane.normal", "must not be zero");
-      } else {
-        ws.is_mesh = true;
-        ws.mesh_path = resolve(w["mesh"], path + ".mesh", r.as<std::string>(w["mesh"], path + ".mesh"));
-      }
-      dem.walls.push_back(ws);
-    }
-  }
-  if (const auto packs = d["packs"]; packs.IsDefined()) {
-    if (!packs.IsSequence()) r.fail(packs, "dem.packs", "expected a list of sphere packs");
-    for (std::size_t i = 0; i < packs.size(); ++i) {
-      const std::string path = "dem.packs." + std::to_string(i);
-      const YAML::Node pk = packs[i];
-      r.check_keys(pk, path, keys_under("dem.packs[]"));
-      DemPackSpec ps;
-      ps.line = pk.Mark().line + 1;
-      ps.material = material(pk, path);
-      ps.velocity = r.get(pk, path, "velocity", ps.velocity);
-      ps.fixed = r.get(pk, path, "fixed", false);
-      const int regions =
-          (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) + (pk["csv"].IsDefined() ? 1 : 0);
-      if (regions != 1) r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL) or 'csv'");
-      ps.settle = r.get(pk, path, "settle", 0.0);
-      if (ps.settle < 0) r.fail(pk["settle"], path + ".settle", "must not be negative (seconds of settling)");
-      if (pk["box"].IsDefined() || pk["mesh"].IsDefined()) {
-        if (pk["box"].IsDefined()) {
-          ps.box = parse_box(r, pk["box"], path + ".box");
-          if (!c.domain.contains(ps.box.min, 1e-9) || !c.domain.contains(ps.box.max, 1e-9))
-            r.fail(pk["box"], path + ".box", "the pack lies (partly) outside the domain");
-        } else {
-          ps.mesh_path = resolve(pk["mesh"], path + ".mesh", r.as<std::string>(pk["mesh"], path + ".mesh"));
-        }
-        ps.radius = r.require<double>(pk, path, "radius");
-        if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
-        ps.jitter = r.get(pk, path, "jitter", 0.0);
-        if (!(ps.jitter >= 0 && ps.jitter < 0.5)) r.fail(pk["jitter"], path + ".jitter", "must lie in [0, 0.5)");
-        ps.random_count = r.get(pk, path, "random", 0L);
-        if (ps.random_count < 0) r.fail(pk["random"], path + ".random", "must be a positive number of spheres");
-        if (pk["box"].IsDefined())
-          for (int k = 0; k < 3; ++k)
-            if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)
-              r.fail(pk["box"], path + ".box", "the box is thinner than one sphere diameter");
-      } else {
-        if (pk["random"].IsDefined() || pk["jitter"].IsDefined())
-          r.fail(pk, path, "'random' and 'jitter' apply to box and mesh packs, not to a CSV list");
-        ps.from_csv = true;
-        ps.csv = resolve(pk["csv"], path + ".csv", r.as<std::string>(pk["csv"], path + ".csv"));
-      }
-      dem.packs.push_back(ps);
+  for (const auto& other : c.walls)
+    if (other.name == ws.name) r.fail(w, path + ".name", "duplicate wall name '" + ws.name + "'");
+  return ws;
+}
+
+// Water must not overlap a tank's wall layers: a fluid box is either inside a box tank
+// or clear of it.
+void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c) {
+  for (std::size_t i = 0; i < c.fluid.size(); ++i) {
+    const Box& f = c.fluid[i].box;
+    for (const auto& w : c.walls) {
+      if (w.is_mesh || w.solid) continue;
+      const Box& t = w.box;
+      const bool inside = t.contains(f.min, 1e-9) && t.contains(f.max, 1e-9);
+      bool apart = false;
+      for (int k = 0; k < 3; ++k) apart = apart || f.max[k] <= t.min[k] + 1e-9 || f.min[k] >= t.max[k] - 1e-9;
+      if (!inside && !apart)
+        r.fail(root["fluid"][i]["box"], "fluid." + std::to_string(i) + ".box",
+               "water crosses the walls of '" + w.name + "' (line " + std::to_string(w.line) +
+                   "); put the fluid box inside the tank");
     }
   }
+}
+
+// The component a gauge reads, checked against its type's choices.
+void parse_component(const Reader& r, const YAML::Node& g, const std::string& path, GaugeSpec& gs) {
+  const std::string key = path + ".component";
+  switch (gs.type) {
+  case GaugeType::Sphere: {
+    gs.component = r.get<std::string>(g, path, "component", "z");
+    const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
+    if (ok.count(gs.component) == 0)
+      r.fail(g["component"], key,
+             "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
+             "mz (fluid moment about the centre)");
+    return;
+  }
+  case GaugeType::DemWall: {
+    gs.component = r.get<std::string>(g, path, "component", "fz");
+    const std::set<std::string> ok{"fx", "fy", "fz", "mx", "my", "mz"};
+    if (ok.count(gs.component) == 0)
+      r.fail(g["component"], key,
+             "a dem_wall gauge reads fx, fy, fz (force of the spheres on the wall) or mx, my, mz (moment about "
+             "'about')");
+    return;
+  }
+  case GaugeType::Velocity:
+  case GaugeType::Force:
+    gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
+    if (gs.component != "x" && gs.component != "y" && gs.component != "z" && gs.component != "mag")
+      r.fail(g["component"], key, "must be x, y, z or mag");
+    return;
+  default:
+    if (g["component"].IsDefined()) r.fail(g["component"], key, "applies to velocity and force gauges only");
+  }
+}
+
+GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& path, const Case& c,
+                      std::set<std::string>& names) {
+  r.check_keys(g, path, keys_under("gauges[]"));
+  GaugeSpec gs;
+  gs.line = g.Mark().line + 1;
+  gs.name = r.require<std::string>(g, path, "name");
+  if (gs.name.empty() || gs.name.find_first_of(",\"\n") != std::string::npos || gs.name == "time")
+    r.fail(g["name"], path + ".name", "gauge names must be non-empty, not 'time', without commas or quotes");
+  if (!names.insert(gs.name).second) r.fail(g["name"], path + ".name", "duplicate gauge name");
+  read_fields(r, g, path, gauge_fields(), gs);
+  const auto type = r.require<std::string>(g, path, "type");
+  if (type == "height") {
+    gs.type = GaugeType::Height;
+    gs.x = r.require<double>(g, path, "x");
+    gs.y = r.require<double>(g, path, "y");
+    if (!c.domain.contains({gs.x, gs.y, c.domain.min.z})) r.fail(g, path, "height gauge lies outside the domain");
+  } else if (type == "pressure" || type == "velocity") {
+    gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
+    gs.at = r.require<Vec3d>(g, path, "at");
+    if (!c.domain.contains(gs.at)) r.fail(g["at"], path + ".at", "gauge point lies outside the domain");
+  } else if (type == "force") {
+    gs.type = GaugeType::Force;
+    gs.wall = r.require<std::string>(g, path, "wall");
+    if (std::none_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) { return w.name == gs.wall; }))
+      r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
+  } else if (type == "sphere") {
+    gs.type = GaugeType::Sphere;
+    gs.sphere = r.require<int>(g, path, "sphere");
+    if (gs.sphere < 0) r.fail(g["sphere"], path + ".sphere", "must not be negative");
+  } else if (type == "dem_wall") {
+    gs.type = GaugeType::DemWall;
+    gs.wall = r.require<std::string>(g, path, "wall"); // checked once the DEM walls are read
+  } else {
+    r.fail(g["type"], path + ".type",
+           "unknown gauge type '" + type + "'; use height, pressure, velocity, force, sphere or dem_wall");
+  }
+  parse_component(r, g, path, gs);
+  return gs;
+}
+
+// Refuses cases too large to build before allocating anything: fluid volume plus box-wall
+// shells, in particles.
+void check_size(const Reader& r, const YAML::Node& root, const Case& c) {
+  double n = 0;
+  for (const auto& f : c.fluid)
+    n += (f.box.max.x - f.box.min.x) * (f.box.max.y - f.box.min.y) * (f.box.max.z - f.box.min.z) /
+         (c.dp * c.dp * c.dp);
+  for (const auto& w : c.walls) {
+    if (w.is_mesh) continue;
+    const Vec3d e = w.box.max - w.box.min;
+    n += 2 * (e.x * e.y + e.y * e.z + e.x * e.z) * 3 * c.sph.h_over_dp / (c.dp * c.dp);
+  }
+  if (n > 1.5e9) {
+    std::ostringstream m;
+    m << "about " << n << " particles: more than surge can hold (1.5e9); increase dp";
+    r.fail(root["dp"], "dp", m.str());
+  }
+}
+
+// What only the whole case can tell: gauges naming DEM walls, water gauges without water,
+// nothing to simulate, a speed of sound that cannot be derived.
+void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
+  for (std::size_t i = 0; i < c.gauges.size(); ++i) {
+    const GaugeSpec& g = c.gauges[i];
+    if (g.type != GaugeType::DemWall) continue;
+    if (std::none_of(c.dem.walls.begin(), c.dem.walls.end(), [&](const DemWallSpec& w) { return w.name == g.wall; }))
+      r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall",
+             "no DEM wall named '" + g.wall + "' (give the wall a name: under dem.walls)");
+  }
+  if (c.dem.active() && c.fluid.empty())
+    for (std::size_t i = 0; i < c.gauges.size(); ++i)
+      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall)
+        r.fail(root["gauges"][i], "gauges." + std::to_string(i),
+               "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
+  if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
+    r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
+  if (!c.fluid.empty() && !(c.water_depth() > 0))
+    r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
+  if (!c.fluid.empty() && !(c.sound_speed() > 0))
+    r.fail(root["gravity"], "gravity", "with zero gravity the speed of sound must be given as sph.c0");
+}
+
+// A keyed section (time, sph, coupling) read from its table.
+template <class S>
+void parse_section(const Reader& r, const YAML::Node& root, const std::string& key,
+                   const std::vector<Field<S>>& fields, S& s) {
+  const auto n = root[key];
+  if (!n.IsDefined()) return;
+  r.check_keys(n, key, keys_under(key));
+  read_fields(r, n, key, fields, s);
 }
 
 Case parse(const YAML::Node& root, Reader& r) {
@@ -348,212 +543,27 @@ Case parse(const YAML::Node& root, Reader& r) {
   const bool sph_case = root["fluid"].IsDefined() || root["walls"].IsDefined() || !root["dem"].IsDefined();
   c.dp = sph_case ? r.require<double>(root, "", "dp") : r.get(root, "", "dp", 0.01);
   if (!(c.dp > 0)) r.fail(root["dp"], "dp", "particle spacing must be positive");
-
-  if (const auto t = root["time"]; t.IsDefined()) {
-    r.check_keys(t, "time", keys_under("time"));
-    read_fields(r, t, "time", time_fields(), c.time);
-  }
+  parse_section(r, root, "time", time_fields(), c.time);
   if (c.time.gauge_every == 0) c.time.gauge_every = c.time.output_every / 10;
   c.gravity = r.get(root, "", "gravity", c.gravity);
-
   if (!root["domain"].IsDefined()) r.fail(root, "domain", "is required");
   c.domain = parse_box(r, root["domain"], "domain");
-
-  if (const auto s = root["sph"]; s.IsDefined()) {
-    r.check_keys(s, "sph", keys_under("sph"));
-    read_fields(r, s, "sph", sph_fields(), c.sph);
-  }
-
-  const YAML::Node fluid = root["fluid"];
-  if (fluid.IsDefined() && !fluid.IsNull()) {
-    if (!fluid.IsSequence()) r.fail(fluid, "fluid", "expected a list of regions, like [{box: {min: [..], max: [..]}}]");
-    for (std::size_t i = 0; i < fluid.size(); ++i) {
-      const std::string path = "fluid." + std::to_string(i);
-      const YAML::Node f = fluid[i];
-      r.check_keys(f, path, keys_under("fluid[]"));
-      FluidRegion reg;
-      if (!f["box"].IsDefined()) r.fail(f, path + ".box", "is required");
-      reg.box = parse_box(r, f["box"], path + ".box");
-      reg.velocity = r.get(f, path, "velocity", reg.velocity);
-      reg.line = f.Mark().line + 1;
-      if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
-        r.fail(f["box"], path + ".box",
-               "fluid region lies (partly) outside the domain; enlarge domain or move the water");
-      const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-3); };
-      if (cells(0) < 1 || cells(1) < 1 || cells(2) < 1)
-        r.fail(f["box"], path + ".box", "fluid region is thinner than dp and would hold no particle");
-      c.fluid.push_back(reg);
-    }
-  }
-
-  const YAML::Node walls = root["walls"];
-  if (walls.IsDefined() && !walls.IsNull()) {
-    if (!walls.IsSequence()) r.fail(walls, "walls", "expected a list of walls");
-    // Absolute: the run folder's case.yaml names the same files wherever `surge restart` runs.
-    const auto dir = case_dir(r.file());
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-      const std::string path = "walls." + std::to_string(i);
-      const YAML::Node w = walls[i];
-      r.check_keys(w, path, keys_under("walls[]"));
-      WallSpec ws;
-      ws.name = r.get<std::string>(w, path, "name", "wall" + std::to_string(i));
-      ws.line = w.Mark().line + 1;
-      const bool has_box = w["box"].IsDefined(), has_mesh = w["mesh"].IsDefined();
-      if (has_box == has_mesh) r.fail(w, path, "a wall needs exactly one of 'box' or 'mesh'");
-      if (has_box) {
-        ws.box = parse_box(r, w["box"], path + ".box");
-        ws.solid = r.get(w, path, "solid", false);
-        if (const auto o = w["open"]; o.IsDefined()) {
-          if (!o.IsSequence()) r.fail(o, path + ".open", "expected a list of faces, like [zmax]");
-          for (std::size_t k = 0; k < o.size(); ++k) ws.open.push_back(parse_face(r, o[k], path + ".open"));
-        }
-      } else {
-        if (w["open"].IsDefined()) r.fail(w["open"], path + ".open", "'open' applies to box walls only");
-        // A solid mesh: everything behind its surface (negative signed distance) is wall,
-        // so no water is made there (a slope with ground under it).
-        ws.solid = r.get(w, path, "solid", false);
-        ws.is_mesh = true;
-        ws.mesh = r.as<std::string>(w["mesh"], path + ".mesh");
-        std::filesystem::path mp(ws.mesh);
-        if (mp.is_relative()) mp = dir / mp;
-        ws.mesh_path = mp.string();
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(mp, ec))
-          r.fail(w["mesh"], path + ".mesh", "mesh file '" + mp.string() + "' not found");
-      }
-      for (const auto& other : c.walls)
-        if (other.name == ws.name) r.fail(w, path + ".name", "duplicate wall name '" + ws.name + "'");
-      c.walls.push_back(ws);
-    }
-  }
-
-  // Water must not overlap a tank's wall layers: a fluid box is either inside a box
-  // tank or clear of it.
-  for (std::size_t i = 0; i < c.fluid.size(); ++i) {
-    const Box& f = c.fluid[i].box;
-    for (const auto& w : c.walls) {
-      if (w.is_mesh || w.solid) continue;
-      const Box& t = w.box;
-      const bool inside = t.contains(f.min, 1e-9) && t.contains(f.max, 1e-9);
-      bool apart = false;
-      for (int k = 0; k < 3; ++k) apart = apart || f.max[k] <= t.min[k] + 1e-9 || f.min[k] >= t.max[k] - 1e-9;
-      if (!inside && !apart)
-        r.fail(fluid[i]["box"], "fluid." + std::to_string(i) + ".box",
-               "water crosses the walls of '" + w.name + "' (line " + std::to_string(w.line) +
-                   "); put the fluid box inside the tank");
-    }
-  }
-
-  const YAML::Node gauges = root["gauges"];
-  if (gauges.IsDefined() && !gauges.IsNull()) {
-    if (!gauges.IsSequence()) r.fail(gauges, "gauges", "expected a list of gauges");
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < gauges.size(); ++i) {
-      const std::string path = "gauges." + std::to_string(i);
-      const YAML::Node g = gauges[i];
-      r.check_keys(g, path, keys_under("gauges[]"));
-      GaugeSpec gs;
-      gs.line = g.Mark().line + 1;
-      gs.name = r.require<std::string>(g, path, "name");
-      if (gs.name.empty() || gs.name.find_first_of(",\"\n") != std::string::npos || gs.name == "time")
-        r.fail(g["name"], path + ".name", "gauge names must be non-empty, not 'time', without commas or quotes");
-      if (!names.insert(gs.name).second) r.fail(g["name"], path + ".name", "duplicate gauge name");
-      const auto type = r.require<std::string>(g, path, "type");
-      if (type == "height") {
-        gs.type = GaugeType::Height;
-        gs.x = r.require<double>(g, path, "x");
-        gs.y = r.require<double>(g, path, "y");
-        const auto surface = r.get<std::string>(g, path, "surface", "column");
-        if (surface != "column" && surface != "highest")
-          r.fail(g["surface"], path + ".surface", "must be column (top of the water standing on the bed) or highest");
-        gs.surface_highest = surface == "highest";
-        if (!c.domain.contains({gs.x, gs.y, c.domain.min.z})) r.fail(g, path, "height gauge lies outside the domain");
-      } else if (type == "pressure" || type == "velocity") {
-        gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
-        gs.at = r.require<Vec3d>(g, path, "at");
-        if (!c.domain.contains(gs.at)) r.fail(g["at"], path + ".at", "gauge point lies outside the domain");
-      } else if (type == "force") {
-        gs.type = GaugeType::Force;
-        gs.wall = r.require<std::string>(g, path, "wall");
-        if (std::none_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) { return w.name == gs.wall; }))
-          r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
-      } else if (type == "sphere") {
-        gs.type = GaugeType::Sphere;
-        gs.sphere = r.require<int>(g, path, "sphere");
-        if (gs.sphere < 0) r.fail(g["sphere"], path + ".sphere", "must not be negative");
-        gs.component = r.get<std::string>(g, path, "component", "z");
-        const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
-        if (ok.count(gs.component) == 0)
-          r.fail(g["component"], path + ".component",
-                 "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
-                 "mz (fluid moment about the centre)");
-      } else if (type == "dem_wall") {
-        gs.type = GaugeType::DemWall;
-        gs.wall = r.require<std::string>(g, path, "wall");
-        gs.about = r.get(g, path, "about", gs.about);
-        gs.component = r.get<std::string>(g, path, "component", "fz");
-        const std::set<std::string> ok{"fx", "fy", "fz", "mx", "my", "mz"};
-        if (ok.count(gs.component) == 0)
-          r.fail(g["component"], path + ".component",
-                 "a dem_wall gauge reads fx, fy, fz (force of the spheres on the wall) or mx, my, mz (moment about "
-                 "'about')");
-      } else {
-        r.fail(g["type"], path + ".type",
-               "unknown gauge type '" + type + "'; use height, pressure, velocity, force, sphere or dem_wall");
-      }
-      if (gs.type == GaugeType::Sphere || gs.type == GaugeType::DemWall) {
-        // component checked above
-      } else if (gs.type == GaugeType::Velocity || gs.type == GaugeType::Force) {
-        gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
-        if (gs.component != "x" && gs.component != "y" && gs.component != "z" && gs.component != "mag")
-          r.fail(g["component"], path + ".component", "must be x, y, z or mag");
-      } else if (g["component"].IsDefined()) {
-        r.fail(g["component"], path + ".component", "applies to velocity and force gauges only");
-      }
-      c.gauges.push_back(gs);
-    }
-  }
-  {
-    // Refuse cases too large to build before allocating anything: fluid volume plus
-    // box-wall shells, in particles.
-    double n = 0;
-    for (const auto& f : c.fluid)
-      n += (f.box.max.x - f.box.min.x) * (f.box.max.y - f.box.min.y) * (f.box.max.z - f.box.min.z) /
-           (c.dp * c.dp * c.dp);
-    for (const auto& w : c.walls) {
-      if (w.is_mesh) continue;
-      const Vec3d e = w.box.max - w.box.min;
-      n += 2 * (e.x * e.y + e.y * e.z + e.x * e.z) * 3 * c.sph.h_over_dp / (c.dp * c.dp);
-    }
-    if (n > 1.5e9) {
-      std::ostringstream m;
-      m << "about " << n << " particles: more than surge can hold (1.5e9); increase dp";
-      r.fail(root["dp"], "dp", m.str());
-    }
-  }
+  parse_section(r, root, "sph", sph_fields(), c.sph);
+  for_each_item(r, root, "fluid", "expected a list of regions, like [{box: {min: [..], max: [..]}}]",
+                [&](const YAML::Node& f, const std::string& path) { c.fluid.push_back(parse_fluid(r, f, path, c)); });
+  std::size_t i = 0;
+  for_each_item(r, root, "walls", "expected a list of walls", [&](const YAML::Node& w, const std::string& path) {
+    c.walls.push_back(parse_wall(r, w, path, i++, c));
+  });
+  check_fluid_in_tanks(r, root, c);
+  std::set<std::string> names;
+  for_each_item(r, root, "gauges", "expected a list of gauges", [&](const YAML::Node& g, const std::string& path) {
+    c.gauges.push_back(parse_gauge(r, g, path, c, names));
+  });
+  check_size(r, root, c);
   if (const auto d = root["dem"]; d.IsDefined()) parse_dem(r, d, c);
-  for (std::size_t i = 0; i < c.gauges.size(); ++i) {
-    const GaugeSpec& g = c.gauges[i];
-    if (g.type != GaugeType::DemWall) continue;
-    if (std::none_of(c.dem.walls.begin(), c.dem.walls.end(), [&](const DemWallSpec& w) { return w.name == g.wall; }))
-      r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall",
-             "no DEM wall named '" + g.wall + "' (give the wall a name: under dem.walls)");
-  }
-  if (c.dem.active() && c.fluid.empty())
-    for (std::size_t i = 0; i < c.gauges.size(); ++i)
-      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall)
-        r.fail(root["gauges"][i], "gauges." + std::to_string(i),
-               "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
-  if (const auto cp = root["coupling"]; cp.IsDefined()) {
-    r.check_keys(cp, "coupling", keys_under("coupling"));
-    read_fields(r, cp, "coupling", coupling_fields(), c.coupling);
-  }
-  if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
-    r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
-  if (!c.fluid.empty() && !(c.water_depth() > 0))
-    r.fail(root, "sph.hmax", "cannot derive the water depth; set sph.hmax");
-  if (!c.fluid.empty() && !(c.sound_speed() > 0))
-    r.fail(root["gravity"], "gravity", "with zero gravity the speed of sound must be given as sph.c0");
+  parse_section(r, root, "coupling", coupling_fields(), c.coupling);
+  check_whole(r, root, c);
   return c;
 }
 
@@ -612,159 +622,172 @@ Case read_case(const std::string& path, const Overrides& overrides) {
 }
 
 namespace {
-// Writes the keys of one section declared in case_schema.cpp.
+void write_vec(YAML::Emitter& e, const Vec3d& v) {
+  e << YAML::Flow << YAML::BeginSeq << v.x << v.y << v.z << YAML::EndSeq;
+}
+void write_box(YAML::Emitter& e, const Box& b) {
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "min" << YAML::Value;
+  write_vec(e, b.min);
+  e << YAML::Key << "max" << YAML::Value;
+  write_vec(e, b.max);
+  e << YAML::EndMap;
+}
+
+// Writes the keys of one table declared in case_schema.cpp.
 template <class S>
 void write_fields(YAML::Emitter& e, const std::vector<Field<S>>& fields, const S& s) {
   for (const auto& f : fields) {
     e << YAML::Key << f.key << YAML::Value;
-    std::visit([&](auto m) { e << s.*m; }, f.member);
+    std::visit(
+        [&](auto m) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(s.*m)>, Vec3d>)
+            write_vec(e, s.*m);
+          else
+            e << s.*m;
+        },
+        f.member);
   }
+}
+
+template <class S>
+void write_section(YAML::Emitter& e, const char* key, const std::vector<Field<S>>& fields, const S& s) {
+  e << YAML::Key << key << YAML::Value << YAML::BeginMap;
+  write_fields(e, fields, s);
+  e << YAML::EndMap;
+}
+
+void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
+  e << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
+  for (const auto& w : walls) {
+    e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << w.name;
+    if (w.is_mesh) {
+      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+    } else {
+      e << YAML::Key << "box" << YAML::Value;
+      write_box(e, w.box);
+      e << YAML::Key << "open" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (Face f : w.open) e << face_name(f);
+      e << YAML::EndSeq;
+    }
+    write_fields(e, wall_fields(), w);
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+}
+
+// Each gauge with the keys of its type only.
+void write_gauge(YAML::Emitter& e, const GaugeSpec& g) {
+  static const char* const type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall"};
+  e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << g.name << YAML::Key << "type" << YAML::Value
+    << type_names[static_cast<int>(g.type)];
+  switch (g.type) {
+  case GaugeType::Height:
+    e << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y" << YAML::Value << g.y << YAML::Key << "surface"
+      << YAML::Value << g.surface;
+    break;
+  case GaugeType::Pressure:
+  case GaugeType::Velocity:
+    e << YAML::Key << "at" << YAML::Value;
+    write_vec(e, g.at);
+    break;
+  case GaugeType::Force:
+  case GaugeType::DemWall:
+    e << YAML::Key << "wall" << YAML::Value << g.wall;
+    break;
+  case GaugeType::Sphere:
+    e << YAML::Key << "sphere" << YAML::Value << g.sphere;
+    break;
+  }
+  if (g.type != GaugeType::Height && g.type != GaugeType::Pressure)
+    e << YAML::Key << "component" << YAML::Value << g.component;
+  if (g.type == GaugeType::DemWall) {
+    e << YAML::Key << "about" << YAML::Value;
+    write_vec(e, g.about);
+  }
+  e << YAML::EndMap;
+}
+
+void write_dem(YAML::Emitter& e, const DemConfig& d) {
+  const auto material = [&](int k) { return d.materials[static_cast<std::size_t>(k)].name; };
+  e << YAML::Key << "dem" << YAML::Value << YAML::BeginMap;
+  write_fields(e, dem_fields(), d);
+  e << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
+  for (const auto& m : d.materials) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
+    write_fields(e, material_fields(), m);
+    e << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_roll << m.k_roll_max
+      << YAML::EndSeq << YAML::Key << "twisting" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_twist
+      << m.k_twist_max << YAML::EndSeq;
+    if (m.bonded)
+      e << YAML::Key << "bond" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "cn" << YAML::Value
+        << m.bond_cn << YAML::Key << "cs" << YAML::Value << m.bond_cs << YAML::EndMap;
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
+  for (const auto& w : d.walls) {
+    e << YAML::BeginMap;
+    write_fields(e, dem_wall_fields(), w);
+    if (w.is_mesh) {
+      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+    } else {
+      e << YAML::Key << "plane" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "point" << YAML::Value;
+      write_vec(e, w.point);
+      e << YAML::Key << "normal" << YAML::Value;
+      write_vec(e, w.normal);
+      e << YAML::EndMap;
+    }
+    e << YAML::Key << "material" << YAML::Value << material(w.material) << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::Key << "packs" << YAML::Value << YAML::BeginSeq;
+  for (const auto& pk : d.packs) {
+    e << YAML::BeginMap;
+    if (pk.from_csv) {
+      e << YAML::Key << "csv" << YAML::Value << pk.csv;
+    } else {
+      if (pk.mesh_path.empty()) {
+        e << YAML::Key << "box" << YAML::Value;
+        write_box(e, pk.box);
+      } else {
+        e << YAML::Key << "mesh" << YAML::Value << pk.mesh_path;
+      }
+      e << YAML::Key << "radius" << YAML::Value << pk.radius;
+    }
+    e << YAML::Key << "material" << YAML::Value << material(pk.material);
+    write_fields(e, pack_fields(), pk);
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::EndMap;
 }
 } // namespace
 
 std::string to_yaml(const Case& c) {
   YAML::Emitter e;
   e.SetDoublePrecision(12);
-  auto vec = [&](const Vec3d& v) { e << YAML::Flow << YAML::BeginSeq << v.x << v.y << v.z << YAML::EndSeq; };
-  auto box = [&](const Box& b) {
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "min" << YAML::Value;
-    vec(b.min);
-    e << YAML::Key << "max" << YAML::Value;
-    vec(b.max);
-    e << YAML::EndMap;
-  };
   e << YAML::BeginMap;
   e << YAML::Key << "name" << YAML::Value << c.name;
   e << YAML::Key << "dp" << YAML::Value << c.dp;
-  e << YAML::Key << "time" << YAML::Value << YAML::BeginMap;
-  write_fields(e, time_fields(), c.time);
-  e << YAML::EndMap;
+  write_section(e, "time", time_fields(), c.time);
   e << YAML::Key << "gravity" << YAML::Value;
-  vec(c.gravity);
+  write_vec(e, c.gravity);
   e << YAML::Key << "domain" << YAML::Value;
-  box(c.domain);
+  write_box(e, c.domain);
   SphConfig sph = c.sph;
   sph.hmax = c.water_depth(); // the depth the speed of sound came from, whatever gave it
-  e << YAML::Key << "sph" << YAML::Value << YAML::BeginMap;
-  write_fields(e, sph_fields(), sph);
-  e << YAML::EndMap;
+  write_section(e, "sph", sph_fields(), sph);
   e << YAML::Key << "fluid" << YAML::Value << YAML::BeginSeq;
   for (const auto& f : c.fluid) {
     e << YAML::BeginMap << YAML::Key << "box" << YAML::Value;
-    box(f.box);
-    e << YAML::Key << "velocity" << YAML::Value;
-    vec(f.velocity);
+    write_box(e, f.box);
+    write_fields(e, fluid_fields(), f);
     e << YAML::EndMap;
   }
   e << YAML::EndSeq;
-  e << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
-  for (const auto& w : c.walls) {
-    e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << w.name;
-    if (w.is_mesh) {
-      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
-      if (w.solid) e << YAML::Key << "solid" << YAML::Value << true;
-    } else {
-      e << YAML::Key << "box" << YAML::Value;
-      box(w.box);
-      e << YAML::Key << "solid" << YAML::Value << w.solid;
-      e << YAML::Key << "open" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-      for (Face f : w.open) e << face_name(f);
-      e << YAML::EndSeq;
-    }
-    e << YAML::EndMap;
-  }
-  e << YAML::EndSeq;
+  write_walls(e, c.walls);
   e << YAML::Key << "gauges" << YAML::Value << YAML::BeginSeq;
-  for (const auto& g : c.gauges) {
-    e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << g.name;
-    switch (g.type) {
-    case GaugeType::Height:
-      e << YAML::Key << "type" << YAML::Value << "height" << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y"
-        << YAML::Value << g.y << YAML::Key << "surface" << YAML::Value << (g.surface_highest ? "highest" : "column");
-      break;
-    case GaugeType::Pressure:
-    case GaugeType::Velocity:
-      e << YAML::Key << "type" << YAML::Value << (g.type == GaugeType::Pressure ? "pressure" : "velocity");
-      e << YAML::Key << "at" << YAML::Value;
-      vec(g.at);
-      if (g.type == GaugeType::Velocity) e << YAML::Key << "component" << YAML::Value << g.component;
-      break;
-    case GaugeType::Force:
-      e << YAML::Key << "type" << YAML::Value << "force" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
-        << "component" << YAML::Value << g.component;
-      break;
-    case GaugeType::DemWall:
-      e << YAML::Key << "type" << YAML::Value << "dem_wall" << YAML::Key << "wall" << YAML::Value << g.wall << YAML::Key
-        << "component" << YAML::Value << g.component << YAML::Key << "about" << YAML::Value;
-      vec(g.about);
-      break;
-    case GaugeType::Sphere:
-      e << YAML::Key << "type" << YAML::Value << "sphere" << YAML::Key << "sphere" << YAML::Value << g.sphere
-        << YAML::Key << "component" << YAML::Value << g.component;
-      break;
-    }
-    e << YAML::EndMap;
-  }
+  for (const auto& g : c.gauges) write_gauge(e, g);
   e << YAML::EndSeq;
-  if (c.dem.active()) {
-    const auto& d = c.dem;
-    e << YAML::Key << "dem" << YAML::Value << YAML::BeginMap;
-    write_fields(e, dem_fields(), d);
-    e << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
-    for (const auto& m : d.materials) {
-      e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
-      write_fields(e, material_fields(), m);
-      e << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_roll << m.k_roll_max
-        << YAML::EndSeq << YAML::Key << "twisting" << YAML::Value << YAML::Flow << YAML::BeginSeq << m.k_twist
-        << m.k_twist_max << YAML::EndSeq;
-      if (m.bonded)
-        e << YAML::Key << "bond" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "cn" << YAML::Value
-          << m.bond_cn << YAML::Key << "cs" << YAML::Value << m.bond_cs << YAML::EndMap;
-      e << YAML::EndMap;
-    }
-    e << YAML::EndSeq << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
-    for (const auto& w : d.walls) {
-      e << YAML::BeginMap;
-      if (!w.name.empty()) e << YAML::Key << "name" << YAML::Value << w.name;
-      if (w.is_mesh) {
-        e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
-      } else {
-        e << YAML::Key << "plane" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "point" << YAML::Value;
-        vec(w.point);
-        e << YAML::Key << "normal" << YAML::Value;
-        vec(w.normal);
-        e << YAML::EndMap;
-      }
-      e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(w.material)].name
-        << YAML::EndMap;
-    }
-    e << YAML::EndSeq << YAML::Key << "packs" << YAML::Value << YAML::BeginSeq;
-    for (const auto& pk : d.packs) {
-      e << YAML::BeginMap;
-      if (pk.from_csv) {
-        e << YAML::Key << "csv" << YAML::Value << pk.csv;
-      } else {
-        if (pk.mesh_path.empty()) {
-          e << YAML::Key << "box" << YAML::Value;
-          box(pk.box);
-        } else {
-          e << YAML::Key << "mesh" << YAML::Value << pk.mesh_path;
-        }
-        e << YAML::Key << "radius" << YAML::Value << pk.radius << YAML::Key << "jitter" << YAML::Value << pk.jitter;
-        if (pk.random_count > 0) e << YAML::Key << "random" << YAML::Value << pk.random_count;
-      }
-      if (pk.settle > 0) e << YAML::Key << "settle" << YAML::Value << pk.settle;
-      e << YAML::Key << "material" << YAML::Value << d.materials[static_cast<std::size_t>(pk.material)].name;
-      e << YAML::Key << "velocity" << YAML::Value;
-      vec(pk.velocity);
-      if (pk.fixed) e << YAML::Key << "fixed" << YAML::Value << true;
-      e << YAML::EndMap;
-    }
-    e << YAML::EndSeq << YAML::EndMap;
-  }
-  e << YAML::Key << "coupling" << YAML::Value << YAML::BeginMap;
-  write_fields(e, coupling_fields(), c.coupling);
-  e << YAML::EndMap;
+  if (c.dem.active()) write_dem(e, c.dem);
+  write_section(e, "coupling", coupling_fields(), c.coupling);
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

@@ -180,6 +180,58 @@ const std::vector<Field<DemMaterialSpec>>& material_fields() {
   return f;
 }
 
+const std::vector<Field<FluidRegion>>& fluid_fields() {
+  static const std::vector<Field<FluidRegion>> f{
+      {"velocity", &FluidRegion::velocity, "m/s", {}, {}, "its initial velocity"},
+  };
+  return f;
+}
+
+const std::vector<Field<WallSpec>>& wall_fields() {
+  static const std::vector<Field<WallSpec>> f{
+      {"solid",
+       &WallSpec::solid,
+       "",
+       {},
+       {},
+       "box: fill the inside (an obstacle); mesh: no water behind the surface"},
+  };
+  return f;
+}
+
+const std::vector<Field<GaugeSpec>>& gauge_fields() {
+  using G = GaugeSpec;
+  static const std::vector<Field<G>> f{
+      {"surface",
+       &G::surface,
+       "",
+       {},
+       {"column", "highest"},
+       "height gauge: the top of the water standing on the bed, or the highest wet point"},
+      {"about", &G::about, "m", {}, {}, "dem_wall: moments about this point"},
+  };
+  return f;
+}
+
+const std::vector<Field<DemWallSpec>>& dem_wall_fields() {
+  static const std::vector<Field<DemWallSpec>> f{
+      {"name", &DemWallSpec::name, "", {}, {}, "name for dem_wall gauges"},
+  };
+  return f;
+}
+
+const std::vector<Field<DemPackSpec>>& pack_fields() {
+  using P = DemPackSpec;
+  static const std::vector<Field<P>> f{
+      {"jitter", &P::jitter, "of the radius", between(0, false, 0.5, true), {}, "random offset of each sphere"},
+      {"random", &P::random_count, "", non_negative(), {}, "> 0: a random loose pack of this many spheres"},
+      {"settle", &P::settle, "s", non_negative(), {}, "settle the pack under gravity for this long"},
+      {"velocity", &P::velocity, "m/s", {}, {}, "initial velocity"},
+      {"fixed", &P::fixed, "", {}, {}, "held in place (forces still computed)"},
+  };
+  return f;
+}
+
 namespace {
 
 template <class S>
@@ -187,6 +239,7 @@ std::string type_of(const Field<S>& f) {
   if (std::holds_alternative<double S::*>(f.member)) return "number";
   if (std::holds_alternative<bool S::*>(f.member)) return "true/false";
   if (std::holds_alternative<std::string S::*>(f.member)) return f.choices.empty() ? "text" : "choice";
+  if (std::holds_alternative<Vec3d S::*>(f.member)) return "[x, y, z]";
   return "integer";
 }
 
@@ -196,6 +249,10 @@ std::string default_of(const Field<S>& f, const S& defaults) {
   if (const auto* m = std::get_if<int S::*>(&f.member)) return num(defaults.**m);
   if (const auto* m = std::get_if<long S::*>(&f.member)) return num(static_cast<double>(defaults.**m));
   if (const auto* m = std::get_if<bool S::*>(&f.member)) return defaults.**m ? "true" : "false";
+  if (const auto* m = std::get_if<Vec3d S::*>(&f.member)) {
+    const Vec3d v = defaults.**m;
+    return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]";
+  }
   return defaults.*std::get<std::string S::*>(f.member);
 }
 
@@ -231,14 +288,13 @@ std::vector<KeyDoc> build_keys() {
   add(k, "sph.", sph_fields());
   k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});
   k.push_back({"fluid[].box", "{min, max}", "required", "m", "inside the domain", "the box of water"});
-  k.push_back({"fluid[].velocity", vec, "[0, 0, 0]", "m/s", "", "its initial velocity"});
+  add(k, "fluid[].", fluid_fields());
   k.push_back({"walls", "list", "", "", "", "SPH walls: box tanks, solid boxes, triangle meshes"});
   k.push_back({"walls[].name", "text", "wallN", "", "unique", "name for force gauges"});
   k.push_back({"walls[].box", "{min, max}", "", "m", "", "a tank (layers outside it) or, with solid, an obstacle"});
   k.push_back({"walls[].open", "list of faces", "[]", "", "xmin xmax ymin ymax zmin zmax",
                "a box tank's faces left without wall"});
-  k.push_back({"walls[].solid", "true/false", "false", "", "",
-               "box: fill the inside (an obstacle); mesh: no water behind the surface"});
+  add(k, "walls[].", wall_fields());
   k.push_back({"walls[].mesh", "file", "", "", "ASCII or binary STL",
                "a triangle mesh (relative to the case file); normals point to the water"});
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
@@ -247,15 +303,13 @@ std::vector<KeyDoc> build_keys() {
                "what is measured"});
   k.push_back({"gauges[].x", "number", "required (height)", "m", "", "height gauge: the vertical line's x"});
   k.push_back({"gauges[].y", "number", "required (height)", "m", "", "height gauge: the vertical line's y"});
-  k.push_back({"gauges[].surface", "choice", "column", "", "column | highest",
-               "height gauge: the top of the water standing on the bed, or the highest wet point"});
   k.push_back({"gauges[].at", vec, "required (pressure, velocity)", "m", "inside the domain", "the probe's point"});
   k.push_back({"gauges[].component", "choice", "by type", "", "x y z mag | x..mz | fx..mz",
                "velocity and force: x, y, z, mag; sphere: x, y, z, vx..vz, fx..fz, mx..mz; dem_wall: fx..mz"});
   k.push_back({"gauges[].wall", "text", "required (force, dem_wall)", "", "a wall's name", "the wall measured"});
   k.push_back({"gauges[].sphere", "integer", "required (sphere)", "", ">= 0",
                "the sphere (packs in order, spheres in pack order)"});
-  k.push_back({"gauges[].about", vec, "[0, 0, 0]", "m", "", "dem_wall: moments about this point"});
+  add(k, "gauges[].", gauge_fields());
   k.push_back({"dem", "mapping", "", "", "", "the landslide as DEM spheres (SPEC 3)"});
   add(k, "dem.", dem_fields());
   k.push_back({"dem.materials", "list", "required", "", "at least one", "materials by name"});
@@ -267,7 +321,7 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.materials[].bond", "{cn, cs}", "", "Pa", ">= 0",
                "bonded material: normal and shear bond strengths (SPEC 3.4)"});
   k.push_back({"dem.walls", "list", "", "", "", "walls the spheres meet: planes and meshes"});
-  k.push_back({"dem.walls[].name", "text", "", "", "", "name for dem_wall gauges"});
+  add(k, "dem.walls[].", dem_wall_fields());
   k.push_back({"dem.walls[].plane", "{point, normal}", "", "m", "normal not zero", "an infinite plane"});
   k.push_back({"dem.walls[].mesh", "file", "", "", "STL", "a triangle mesh"});
   k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
@@ -276,12 +330,8 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.packs[].mesh", "file", "", "", "closed STL", "a pack inside a closed mesh"});
   k.push_back({"dem.packs[].csv", "file", "", "", "x, y, z, r per line", "spheres listed in a file"});
   k.push_back({"dem.packs[].radius", "number", "required (box, mesh)", "m", "> 0", "sphere radius"});
-  k.push_back({"dem.packs[].jitter", "number", "0", "of the radius", "[0, 0.5)", "random offset of each sphere"});
-  k.push_back({"dem.packs[].random", "integer", "0", "", ">= 0", "> 0: a random loose pack of this many spheres"});
-  k.push_back({"dem.packs[].settle", "number", "0", "s", ">= 0", "settle the pack under gravity for this long"});
   k.push_back({"dem.packs[].material", "text", "required", "", "a material's name", "the spheres' material"});
-  k.push_back({"dem.packs[].velocity", vec, "[0, 0, 0]", "m/s", "", "initial velocity"});
-  k.push_back({"dem.packs[].fixed", "true/false", "false", "", "", "held in place (forces still computed)"});
+  add(k, "dem.packs[].", pack_fields());
   k.push_back({"coupling", "mapping", "", "", "", "SPH-DEM coupling (SPEC 4)"});
   add(k, "coupling.", coupling_fields());
   return k;

@@ -1,10 +1,11 @@
 // The case file's keys, each declared once: its place, type, default, unit, allowed
 // values and one line of help. The reader parses and checks the keyed sections from these
 // tables (time, sph, coupling, dem, each DEM material), to_yaml writes them back from
-// them, and `surge keys` and docs/case_reference.md list every key from them. The lists
-// (fluid, walls, gauges, DEM walls and packs) are parsed by hand, since their items take
-// one shape or another; their keys are declared here too (the reader's allowed-key lists
-// and the reference come from these entries).
+// them, and `surge keys` and docs/case_reference.md list every key from them. The items
+// of the lists (fluid, walls, gauges, DEM walls and packs) take one shape or another: their
+// optional keys are tables too (read, range-checked and documented from them); the keys
+// that choose the shape or are required for one are read by hand and declared as
+// reference entries here (the reader's allowed-key lists come from all of them).
 #pragma once
 #include "surge/core/case.hpp"
 
@@ -35,7 +36,7 @@ Range between(double lo, bool lo_open, double hi, bool hi_open);
 template <class S>
 struct Field {
   const char* key;
-  std::variant<double S::*, int S::*, long S::*, bool S::*, std::string S::*> member;
+  std::variant<double S::*, int S::*, long S::*, bool S::*, std::string S::*, Vec3d S::*> member;
   const char* unit;                 // "" for none, "-" for a ratio
   Range range;                      // numbers
   std::vector<std::string> choices; // text keys with a fixed set of values
@@ -47,6 +48,12 @@ const std::vector<Field<SphConfig>>& sph_fields();
 const std::vector<Field<CouplingConfig>>& coupling_fields();
 const std::vector<Field<DemConfig>>& dem_fields();
 const std::vector<Field<DemMaterialSpec>>& material_fields();
+// The optional keys of list items.
+const std::vector<Field<FluidRegion>>& fluid_fields();
+const std::vector<Field<WallSpec>>& wall_fields();
+const std::vector<Field<GaugeSpec>>& gauge_fields();
+const std::vector<Field<DemWallSpec>>& dem_wall_fields();
+const std::vector<Field<DemPackSpec>>& pack_fields();
 
 // A key as users read it: `path` with [] for a list's items ("walls[].box"), its type,
 // default ("required", or empty where none applies), unit, allowed values, help.

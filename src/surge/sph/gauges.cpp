@@ -87,7 +87,7 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
     const auto& spec = pr.spec;
     double v = 0;
     if (spec.type == GaugeType::Height) {
-      v = (spec.surface_highest ? highest_wet(pr, sums) : column_top(pr, sums)) + origin_z_;
+      v = (spec.surface == "highest" ? highest_wet(pr, sums) : column_top(pr, sums)) + origin_z_;
     } else if (spec.type == GaugeType::Pressure || spec.type == GaugeType::Velocity) {
       const PointSums& s = sums[pr.first_sample];
       // Shepard normalisation; a point with too little fluid around it reads 0.
