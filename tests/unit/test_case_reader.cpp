@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -74,13 +74,13 @@ enum class GaugeType { Height, Pressure, Velocity, Force, Sphere, DemWall };
 struct GaugeSpec {
   std::string name;
   GaugeType type = GaugeType::Height;
-  double x = 0, y = 0;          // height gauges
+  double x = 0, y = 0;            // height gauges
   std::string surface = "column"; // height: column (top of the water standing on the bed) or highest (wet point)
-  Vec3d at{};                   // pressure / velocity gauges
-  std::string component = "z";  // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
-  std::string wall;             // force gauges: name of the wall
-  int sphere = 0;               // sphere gauges: index of the sphere (packs in order, spheres in pack order)
-  Vec3d about{};                // dem_wall gauges: moments about this point (absolute)
+  Vec3d at{};                     // pressure / velocity gauges
+  std::string component = "z";    // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
+  std::string wall;               // force gauges: name of the wall
+  int sphere = 0;                 // sphere gauges: index of the sphere (packs in order, spheres in pack order)
+  Vec3d about{};                  // dem_wall gauges: moments about this point (absolute)
   int line = 0;
 };
 

@@ -341,9 +341,9 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
   for_each_item(r, d, "dem.walls", "expected a list of walls", [&](const YAML::Node& w, const std::string& path) {
     dem.walls.push_back(parse_dem_wall(r, w, path, dem));
   });
-  for_each_item(r, d, "dem.packs", "expected a list of sphere packs", [&](const YAML::Node& pk, const std::string& path) {
-    dem.packs.push_back(parse_pack(r, pk, path, c));
-  });
+  for_each_item(
+      r, d, "dem.packs", "expected a list of sphere packs",
+      [&](const YAML::Node& pk, const std::string& path) { dem.packs.push_back(parse_pack(r, pk, path, c)); });
 }
 
 FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string& path, const Case& c) {
@@ -485,8 +485,7 @@ GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& p
 void check_size(const Reader& r, const YAML::Node& root, const Case& c) {
   double n = 0;
   for (const auto& f : c.fluid)
-    n += (f.box.max.x - f.box.min.x) * (f.box.max.y - f.box.min.y) * (f.box.max.z - f.box.min.z) /
-         (c.dp * c.dp * c.dp);
+    n += (f.box.max.x - f.box.min.x) * (f.box.max.y - f.box.min.y) * (f.box.max.z - f.box.min.z) / (c.dp * c.dp * c.dp);
   for (const auto& w : c.walls) {
     if (w.is_mesh) continue;
     const Vec3d e = w.box.max - w.box.min;
@@ -524,8 +523,8 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
 
 // A keyed section (time, sph, coupling) read from its table.
 template <class S>
-void parse_section(const Reader& r, const YAML::Node& root, const std::string& key,
-                   const std::vector<Field<S>>& fields, S& s) {
+void parse_section(const Reader& r, const YAML::Node& root, const std::string& key, const std::vector<Field<S>>& fields,
+                   S& s) {
   const auto n = root[key];
   if (!n.IsDefined()) return;
   r.check_keys(n, key, keys_under(key));

@@ -189,12 +189,7 @@ const std::vector<Field<FluidRegion>>& fluid_fields() {
 
 const std::vector<Field<WallSpec>>& wall_fields() {
   static const std::vector<Field<WallSpec>> f{
-      {"solid",
-       &WallSpec::solid,
-       "",
-       {},
-       {},
-       "box: fill the inside (an obstacle); mesh: no water behind the surface"},
+      {"solid", &WallSpec::solid, "", {}, {}, "box: fill the inside (an obstacle); mesh: no water behind the surface"},
   };
   return f;
 }
