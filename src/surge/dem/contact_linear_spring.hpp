@@ -1,5 +1,6 @@
 // Linear spring-dashpot contact law of the paper's DEM (SPEC §3), as host/device
-// value types. Not yet wired into a DEM solver: the DEM issue builds on these.
+// value types, and `LinearSpring`, the law the DEM solver runs by default
+// (`dem.contact: linear_spring`; contact_law.hpp says what a law provides).
 //
 // normal:   F_n = k_n u_n + c_n du_n/dt along n, 1/k_n = 1/(E_A r_A) + 1/(E_B r_B),
 //           c_n = 2 beta sqrt(m* k_n), beta = -ln e / sqrt(pi^2 + ln^2 e);
@@ -10,6 +11,9 @@
 //           cap theta is reset so that K theta = M_max.
 #pragma once
 #include "surge/core/types.hpp"
+#include "surge/dem/material.hpp"
+
+#include <cmath>
 
 namespace surge::dem {
 
@@ -105,5 +109,54 @@ struct ResistanceUpdate {
   }
   return {theta, -m}; // the moment opposes the relative rotation
 }
+
+// The paper's law as a contact law (contact_law.hpp): the two-spring stiffnesses and the
+// damping of the lower restitution, fixed for a listed pair; a wall acts as a sphere of
+// the sphere's own radius and infinite mass (SPEC §3).
+struct LinearSpring {
+  static constexpr const char* name = "linear_spring";
+  static constexpr bool damps_shear = false;
+  struct Pair {
+    Real kn, ks, cn;
+  };
+  // A material's damping constant: the damping ratio of its restitution.
+  static Real damping(Real restitution) { return damping_ratio(restitution); }
+  // Why a material does not suit this law (nullptr: it does); the key named.
+  static const char* unsuitable(const Material& m, const char** key) {
+    *key = "nu";
+    return m.nu > 0 ? nullptr : "must be positive with the linear spring (the shear-to-normal stiffness ratio)";
+  }
+  [[nodiscard]] SURGE_HD static Pair pair(const Material& a, const Material& b, Real ra, Real rb, Real mstar) {
+    Pair p;
+    p.kn = normal_stiffness(a.young, ra, b.young, rb);
+    p.ks = dem::shear_stiffness(a.young, a.nu, ra, b.young, b.nu, rb);
+    // c_n = 2 beta sqrt(m* k_n), beta that of the lower restitution (damping_ratio falls
+    // as e rises, so it is the larger of the two materials' ratios).
+    p.cn = NormalSpringDashpot::with_ratio(p.kn, mstar, a.damping > b.damping ? a.damping : b.damping).cn;
+    return p;
+  }
+  [[nodiscard]] SURGE_HD static Pair wall(const Material& sphere, const Material& w, Real r, Real m) {
+    return pair(sphere, w, r, r, m);
+  }
+  [[nodiscard]] SURGE_HD static Real normal_force(const Pair& p, Real un, Real dun, bool bonded) {
+    NormalSpringDashpot law;
+    law.kn = p.kn;
+    law.cn = p.cn;
+    return law.force(un, dun, bonded);
+  }
+  [[nodiscard]] SURGE_HD static Real shear_stiffness(const Pair& p, Real un) {
+    (void)un;
+    return p.ks;
+  }
+  [[nodiscard]] SURGE_HD static Real shear_damping(const Pair& p, Real un) {
+    (void)p, (void)un;
+    return 0;
+  }
+  // sqrt(m / k_n) of a sphere against an equal one (the step is dem.dt_factor times the
+  // smallest; SPEC §3).
+  static Real time_scale(const Material& m, Real r, Real mass) {
+    return std::sqrt(mass / normal_stiffness(m.young, r, m.young, r));
+  }
+};
 
 } // namespace surge::dem

@@ -30,46 +30,70 @@ struct PairInput {
   Real un;     // overlap
   Real ra, rb; // radii (rb: 0 for a plane)
   Vec3 va, wa, vb, wb;
-  Real kn, ks, cn; // stiffnesses and normal damping coefficient (pair_law)
   Real tan_phi;
   Real k_roll, k_roll_max, k_twist, k_twist_max;
   Real rmin;             // r' = min(r_A, r_B)
   Real bond_cn, bond_cs; // bond strengths (used while the slot is bonded)
 };
 
-SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& old, Real dt) {
+// The shear force of law L: the incremental spring with the Coulomb limit on it, or, for
+// a law that damps shear, on the spring and the damping together (the spring then keeps
+// what the limit leaves of the total). `spring` is the history to keep.
+struct ShearTerms {
+  Vec3 force, spring;
+  bool slipped;
+};
+template <class L>
+SURGE_HD inline ShearTerms shear_terms(const Vec3& old, const Vec3& n, const Vec3& vrel, Real dt, Real ks, Real cs,
+                                       Real limit) {
+  if constexpr (!L::damps_shear) {
+    (void)cs;
+    const ShearUpdate sh = shear_force(old, n, vrel * dt, ks, limit);
+    return {sh.force, sh.force, sh.slipped};
+  } else {
+    const Vec3 vt = tangential(vrel, n);
+    const Vec3 spring = rotate_into_plane(old, n) - vt * (dt * ks);
+    const Vec3 total = spring - vt * cs;
+    if (!(norm(total) > limit)) return {total, spring, false};
+    const Vec3 capped = cap_length(total, limit);
+    return {capped, capped + vt * cs, true};
+  }
+}
+
+template <class L>
+SURGE_HD inline PairResult pair_terms(const PairInput& in, const typename L::Pair& law, const ContactSlot& old,
+                                      Real dt) {
   const Vec3 n = in.n;
   const Vec3 ca = n * (-(in.ra - in.un / 2)); // contact point relative to A's centre
   const Vec3 cb = n * (in.rb - in.un / 2);    // ... relative to B's centre
   const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
   const Real dun = -dot(vrel, n);
-  NormalSpringDashpot law;
-  law.kn = in.kn;
-  law.cn = in.cn;
   bool bonded = old.bonded != 0, broke = false;
-  Real fn = law.force(in.un, dun, bonded);
+  Real fn = L::normal_force(law, in.un, dun, bonded);
   const Real area = in.rmin * in.rmin;
   if (bonded && -fn > in.bond_cn * area) { // tension beyond C_n r'^2
     bonded = false;
     broke = true;
-    fn = law.force(in.un, dun, false);
+    fn = L::normal_force(law, in.un, dun, false);
   }
   const Real fn_abs = fn < 0 ? -fn : fn;
-  ShearUpdate sh = shear_force(old.shear, n, vrel * dt, in.ks, fn_abs * in.tan_phi + (bonded ? in.bond_cs * area : 0));
+  const Real ks = L::shear_stiffness(law, in.un), cs = L::shear_damping(law, in.un);
+  ShearTerms sh =
+      shear_terms<L>(old.shear, n, vrel, dt, ks, cs, fn_abs * in.tan_phi + (bonded ? in.bond_cs * area : 0));
   if (bonded && sh.slipped) { // shear beyond |F_n| tan(phi) + C_s r'^2: the bond breaks, friction remains
     bonded = false;
     broke = true;
-    fn = law.force(in.un, dun, false);
-    sh = shear_force(old.shear, n, vrel * dt, in.ks, fn * in.tan_phi);
+    fn = L::normal_force(law, in.un, dun, false);
+    sh = shear_terms<L>(old.shear, n, vrel, dt, ks, cs, fn * in.tan_phi);
   }
   const Vec3 dtheta = (in.wa - in.wb) * dt;
   const Vec3 droll = tangential(dtheta, n);
   const Vec3 dtwist = n * dot(dtheta, n);
-  const Real kr = in.k_roll * in.rmin * in.rmin * in.ks, kt = in.k_twist * in.rmin * in.rmin * in.ks;
+  const Real kr = in.k_roll * in.rmin * in.rmin * ks, kt = in.k_twist * in.rmin * in.rmin * ks;
   PairResult r;
   r.broke = broke;
   r.slot.bonded = bonded ? 1U : 0U;
-  r.slot.shear = sh.force;
+  r.slot.shear = sh.spring;
   Vec3 m_roll{}, m_twist{};
   if (kr > 0) {
     const ResistanceUpdate u =
@@ -88,9 +112,8 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const ContactSlot& ol
   return r;
 }
 
-// Pair properties from the two materials and radii (a plane passes its sphere's radius
-// as rb: it acts as a sphere of the same radius in the two-spring formula, SPEC §3).
-// Everything but the stiffnesses:
+// Pair properties from the two materials and radii that every law shares (the law's own
+// constants come from L::pair and L::wall).
 SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
 
   in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
@@ -102,18 +125,6 @@ SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real
   const bool bondable = ma.bonded && mb.bonded;
   in.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
   in.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
-}
-// The normal law's damping: c_n = 2 beta sqrt(m* k_n), beta that of the lower restitution
-// (damping_ratio falls as e rises, so it is the larger of the two materials' ratios).
-SURGE_HD inline Real normal_damping(const Material& ma, const Material& mb, Real kn, Real mstar) {
-  return NormalSpringDashpot::with_ratio(kn, mstar, ma.damping > mb.damping ? ma.damping : mb.damping).cn;
-}
-SURGE_HD inline void mix_materials(const Material& ma, const Material& mb, Real ra, Real rb, Real mstar,
-                                   PairInput& in) {
-  in.kn = normal_stiffness(ma.young, ra, mb.young, rb);
-  in.ks = shear_stiffness(ma.young, ma.nu, ra, mb.young, mb.nu, rb);
-  in.cn = normal_damping(ma, mb, in.kn, mstar);
-  mix_properties(ma, mb, ra, rb, in);
 }
 
 // The wall triangles sphere (x, r) touches, one per point of contact: face contacts
@@ -154,10 +165,16 @@ SURGE_HD inline int wall_contacts(const WallTriangle* tris, int n_tris, const Ve
   return n;
 }
 
-// The pair input of sphere i against a wall (a plane or triangle of infinite mass acting
-// as a sphere of the same radius, never bonded).
-SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw,
-                                          const Vec3& n, Real un) {
+// The pair input of sphere i against a wall (a plane or triangle of infinite mass, never
+// bonded; the law says how the wall mixes), and the law's constants for it.
+template <class L>
+struct WallPair {
+  PairInput in;
+  typename L::Pair law;
+};
+template <class L>
+SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw,
+                                            const Vec3& n, Real un) {
   PairInput in;
   in.n = n;
   in.un = un;
@@ -169,12 +186,14 @@ SURGE_HD inline PairInput wall_pair_input(const DemView& v, int i, const Materia
   in.wb = Vec3{};
   Material unbondable = mw;
   unbondable.bonded = false;
-  mix_materials(mi, unbondable, in.ra, in.ra, v.mass[i], in);
-  return in;
+  const typename L::Pair law = L::wall(mi, unbondable, in.ra, v.mass[i]);
+  mix_properties(mi, unbondable, in.ra, in.ra, in); // as a sphere of the same radius (SPEC §3)
+  return {in, law};
 }
 
 // The pair terms of sphere a (the lower id) with b (sorted indices) for pair p: the
 // history of the pair and its stored law, the rest from the two spheres and materials.
+template <class L>
 SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, int a, int b, std::uint32_t p, Real dist,
                                        Real dt) {
   const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
@@ -188,16 +207,13 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, i
   in.wa = v.omega[a];
   in.vb = v.vel[b];
   in.wb = v.omega[b];
-  const PairLaw law = v.law[p];
-  in.kn = law.kn;
-  in.ks = law.ks;
-  in.cn = law.cn;
   mix_properties(ma, mb, in.ra, in.rb, in);
-  return pair_terms(in, v.hist[p], dt);
+  return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), v.hist[p], dt);
 }
 
-// Each pair's stiffnesses and damping (mix_materials), once per list, written by the
-// pair's A sphere: the step reads them instead of recomputing two-spring series and c_n.
+// Each pair's law constants (L::pair), once per list, written by the pair's A sphere: the
+// step reads them instead of mixing the materials again.
+template <class L>
 void pair_laws(const DemView& v, const Material* mats) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int a) {
@@ -205,10 +221,9 @@ void pair_laws(const DemView& v, const Material* mats) {
         for (std::uint32_t k = 0; k < v.nnbr[a]; ++k) {
           const int b = static_cast<int>(v.nbr[base + k]);
           if (v.id[a] > v.id[b]) continue;
-          PairInput in;
           const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          mix_materials(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar, in);
-          v.law[v.entry[base + k]] = {in.kn, in.ks, in.cn};
+          store_law(v.law[v.entry[base + k]],
+                    L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar));
         }
       });
 }
@@ -300,6 +315,7 @@ void link_pairs(const DemView& v) {
 
 // Pass 1 of a step: each pair once, by its A sphere (lower id), from the history of its
 // pair: the history is updated in place and the forces written beside it.
+template <class L>
 void pair_pass(const DemView& v, const Material* mats, Real dt) {
   par::parallel_for_uneven(
       v.n, SURGE_LAMBDA(int i) {
@@ -321,7 +337,7 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
             v.pair[p] = PairForce{};
             continue;
           }
-          const PairResult r = sphere_pair(v, mats, i, j, p, dist, dt);
+          const PairResult r = sphere_pair<L>(v, mats, i, j, p, dist, dt);
           v.hist[p] = r.slot;
           v.hist[p].partner = partner;
           v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
@@ -331,6 +347,7 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
 
 // Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
 // B-side ones negated, read at the A side's slot), then its wall contacts.
+template <class L>
 void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, int n_planes, const WallTriangle* tris,
                  int n_tris, Real dt) {
   par::parallel_for(
@@ -367,11 +384,11 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
         int wused = 0;
         auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-          const PairInput in = wall_pair_input(v, i, mi, mats[material], n, un);
+          const WallPair<L> w = wall_pair_input<L>(v, i, mi, mats[material], n, un);
           ContactSlot s{};
           for (int k = 0; k < max_wall_slots; ++k)
             if (old_w[k].partner == partner) s = old_w[k];
-          const PairResult r = pair_terms(in, s, dt);
+          const PairResult r = pair_terms<L>(w.in, w.law, s, dt);
           f += r.force_a;
           t += r.torque_a;
           ++used;
@@ -416,6 +433,7 @@ Real max_displacement2(const DemView& v, const Vec3* built) {
 // (>= 0) or the triangles of mesh `mesh` (>= 0). Each stored wall contact is evaluated
 // again for the current state with a zero time step, which gives the contact force as it
 // stands (normal spring and dashpot, stored shear, rolling and twisting moments).
+template <class L>
 WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, const WallTriangle* tris, int plane,
                    int mesh, Vec3 about) {
   return par::parallel_reduce(
@@ -453,7 +471,8 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
             continue;
           }
           if (!(un > 0)) continue;
-          const PairResult r = pair_terms(wall_pair_input(v, i, mi, mats[material], n, un), row[k], 0);
+          const WallPair<L> w = wall_pair_input<L>(v, i, mi, mats[material], n, un);
+          const PairResult r = pair_terms<L>(w.in, w.law, row[k], 0);
           out.force -= r.force_a;
           out.moment -= cross(xi - about, r.force_a) + r.torque_a;
         }
@@ -523,10 +542,21 @@ void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
 
 } // namespace detail
 
-DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi)
-    : materials_host_(std::move(materials)), gravity_(gravity), lo_(lo), hi_(hi) {
+DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi,
+                     int contact_law)
+    : materials_host_(std::move(materials)), gravity_(gravity), law_index_(contact_law), lo_(lo), hi_(hi) {
   if (materials_host_.empty()) throw std::invalid_argument("DEM needs at least one material");
-  for (auto& m : materials_host_) m.damping = damping_ratio(m.restitution);
+  if (law_index_ < 0 || law_index_ >= static_cast<int>(contact_law_names().size()))
+    throw std::invalid_argument("unknown DEM contact law");
+  with_contact_law(law_index_, [&](auto law) {
+    using L = decltype(law);
+    for (auto& m : materials_host_) {
+      const char* key = "";
+      if (const char* why = L::unsuitable(m, &key))
+        throw std::invalid_argument(std::string("material ") + key + " " + why);
+      m.damping = L::damping(m.restitution);
+    }
+  });
   par::upload(materials_, materials_host_);
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
@@ -640,11 +670,10 @@ Real DemSolver::critical_dt(Real factor) const {
   const auto mass = par::download(mass_), radius = par::download(radius_);
   const auto mat = par::download(material_);
   Real dt = std::numeric_limits<Real>::max();
-  for (std::size_t k = 0; k < mass.size(); ++k) {
-    const auto& m = materials_host_[mat[k]];
-    const Real kn = normal_stiffness(m.young, radius[k], m.young, radius[k]);
-    dt = std::min(dt, std::sqrt(mass[k] / kn));
-  }
+  with_contact_law(law_index_, [&](auto law) {
+    for (std::size_t k = 0; k < mass.size(); ++k)
+      dt = std::min(dt, decltype(law)::time_scale(materials_host_[mat[k]], radius[k], mass[k]));
+  });
   return factor * dt;
 }
 
@@ -692,7 +721,7 @@ void DemSolver::rebuild_list() {
   v = view();
   detail::fill_pairs(v, hist_old_.data());
   detail::link_pairs(v);
-  detail::pair_laws(v, materials_.data());
+  with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
   par::copy(pos_built_, pos_);
   list_valid_ = true;
 }
@@ -711,8 +740,11 @@ void DemSolver::step(Real dt) {
   const DemView v = view();
   {
     const auto t = par::timed(par::Phase::DemContacts);
-    detail::pair_pass(v, materials_.data(), dt);
-    detail::sphere_pass(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_, dt);
+    with_contact_law(law_index_, [&](auto law) {
+      using L = decltype(law);
+      detail::pair_pass<L>(v, materials_.data(), dt);
+      detail::sphere_pass<L>(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_, dt);
+    });
   }
   {
     const auto t = par::timed(par::Phase::DemIntegrate);
@@ -807,7 +839,7 @@ void DemSolver::restore(const std::string& bytes) {
   pair_.resize(pairs);
   law_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
-  detail::pair_laws(view(), materials_.data());
+  with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(view(), materials_.data()); });
   list_valid_ = valid == 1;
 }
 
@@ -852,7 +884,11 @@ long DemSolver::bond_touching(Real gap) {
 
 WallLoad DemSolver::wall_load(int plane, int mesh, Vec3 about) {
   const DemView v = view();
-  return detail::wall_load(v, materials_.data(), planes_.data(), triangles_.data(), plane, mesh, about);
+  WallLoad out;
+  with_contact_law(law_index_, [&](auto law) {
+    out = detail::wall_load<decltype(law)>(v, materials_.data(), planes_.data(), triangles_.data(), plane, mesh, about);
+  });
+  return out;
 }
 
 bool DemSolver::finite() {

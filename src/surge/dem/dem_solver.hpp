@@ -17,7 +17,7 @@
 // External forces (the fluid's, SPEC §4) are held per sphere id and added to the
 // contact forces at every step until replaced.
 #pragma once
-#include "surge/dem/contact_linear_spring.hpp"
+#include "surge/dem/contact_law.hpp"
 #include "surge/dem/rigid_state.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
@@ -28,20 +28,6 @@
 #include <vector>
 
 namespace surge::dem {
-
-struct Material {
-  Real density = 2500;
-  Real young = Real(1e6);     // E [Pa] (stiffness per length in the two-spring formula)
-  Real nu = Real(0.2);        // shear-to-normal stiffness ratio
-  Real tan_phi = Real(0.577); // friction coefficient tan(phi)
-  Real restitution = Real(0.5);
-  Real k_roll = 0, k_roll_max = 0;   // rolling stiffness factor and cap factor
-  Real k_twist = 0, k_twist_max = 0; // twisting
-  bool bonded = false;               // touching spheres of two bonded materials are bonded at the start (CFM)
-  Real bond_cn = 0;                  // bond tensile strength C_n [Pa]: breaks beyond C_n r'^2 in tension
-  Real bond_cs = 0;                  // bond shear strength C_s [Pa]: breaks beyond |F_n| tan(phi) + C_s r'^2
-  Real damping = 0;                  // derived by the solver: damping_ratio(restitution)
-};
 
 // An infinite plane wall: points x with dot(x - point, normal) >= 0 are inside.
 struct Plane {
@@ -80,11 +66,6 @@ struct ContactSlot {
   std::uint32_t bonded = 0; // 1 while a cohesive bond holds this contact
 };
 
-// A pair's normal and shear stiffness and normal damping, fixed while it is listed.
-struct PairLaw {
-  Real kn = 0, ks = 0, cn = 0;
-};
-
 // A listed pair's evaluation by its A sphere: force on A, torques about A's and B's centres.
 struct PairForce {
   Vec3 force_a{}, torque_a{}, torque_b{};
@@ -114,7 +95,7 @@ struct DemView {
   std::uint32_t *pair_begin, *pair_count; // the pairs a sphere is A of: [begin, begin + count)
   ContactSlot* hist;                      // by pair: the A side's history (partner: B's id)
   PairForce* pair;                        // by pair: the A side's evaluation this step
-  PairLaw* law;                           // by pair: stiffnesses and damping
+  PairLaw* law;                           // by pair: the contact law's constants
   ContactSlot* wall_hist;                 // max_wall_slots per sphere: wall contacts, by partner id
   std::uint32_t* broken;                  // bonds this sphere has lost so far (each bond counts on both spheres)
   std::uint32_t* ncontact;                // contacts of the last step
@@ -124,7 +105,10 @@ struct DemView {
 
 class DemSolver {
 public:
-  DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi);
+  // contact_law: an index into ContactLaws (contact_law.hpp; 0, the linear spring, by
+  // default). Throws std::invalid_argument for a material the law cannot take.
+  DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi,
+            int contact_law = 0);
   void set_spheres(const std::vector<Sphere>& s);
   // Triangle-mesh walls (all meshes together; WallTriangle::mesh tells them apart).
   void set_wall_triangles(const std::vector<WallTriangle>& t);
@@ -138,7 +122,8 @@ public:
   [[nodiscard]] WallLoad wall_load(int plane, int mesh, Vec3 about);
   // Bonds broken since the start.
   [[nodiscard]] long broken_bonds() const;
-  // dt = factor * min sqrt(m / k_n) over spheres in contact with an equal sphere (SPEC §3).
+  // dt = factor * the contact law's smallest time scale over the spheres (linear spring:
+  // sqrt(m / k_n) against an equal sphere, SPEC §3; Hertz-Mindlin: the Rayleigh time).
   [[nodiscard]] Real critical_dt(Real factor) const;
   void step(Real dt);
   // External force and moment on each sphere, by id (n entries each, in the execution
@@ -191,6 +176,7 @@ private:
   int n_triangles_ = 0;
   Vec3 gravity_{};
   Real local_damping_ = 0;
+  int law_index_ = 0; // the contact law, an index into ContactLaws
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   int n_ = 0;
