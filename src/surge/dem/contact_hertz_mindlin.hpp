@@ -34,6 +34,7 @@ double hertz_restitution(double alpha);
 
 struct HertzMindlin {
   static constexpr const char* name = "hertz_mindlin";
+  static constexpr const char* time_scale_name = "Rayleigh time";
   static constexpr bool damps_shear = true;
   struct Pair {
     Real k;  // 4/3 E* sqrt(R*)

@@ -32,6 +32,7 @@ template <class L>
 concept ContactLaw = std::is_trivially_copyable_v<typename L::Pair> && sizeof(typename L::Pair) <= sizeof(PairLaw) &&
                      requires(const Material& m, Real x, bool b, const typename L::Pair& p, const char** key) {
                        { L::name } -> std::convertible_to<const char*>;
+                       { L::time_scale_name } -> std::convertible_to<const char*>;
                        { L::damps_shear } -> std::convertible_to<bool>;
                        { L::damping(x) } -> std::same_as<Real>;
                        { L::unsuitable(m, key) } -> std::same_as<const char*>;

@@ -115,6 +115,7 @@ struct ResistanceUpdate {
 // the sphere's own radius and infinite mass (SPEC §3).
 struct LinearSpring {
   static constexpr const char* name = "linear_spring";
+  static constexpr const char* time_scale_name = "sqrt(m / k_n)";
   static constexpr bool damps_shear = false;
   struct Pair {
     Real kn, ks, cn;

@@ -151,7 +151,20 @@ const std::vector<Field<CouplingConfig>>& coupling_fields() {
 const std::vector<Field<DemConfig>>& dem_fields() {
   using D = DemConfig;
   static const std::vector<Field<D>> f{
-      {"dt_factor", &D::dt_factor, "-", between(0, true, 0.5, false), {}, "DEM step over min sqrt(m / k_n)"},
+      {"contact",
+       &D::contact,
+       "",
+       {},
+       {"linear_spring", "hertz_mindlin"},
+       "contact law: linear_spring (the paper's, SPEC 3) or hertz_mindlin (Hertz normal, Mindlin no-slip tangential, "
+       "Tsuji damping; no bonds)"},
+      {"dt_factor",
+       &D::dt_factor,
+       "-",
+       between(0, true, 0.5, false),
+       {},
+       "DEM step over the smallest contact time scale: sqrt(m / k_n) (linear spring) or the Rayleigh time "
+       "(hertz_mindlin)"},
       {"bond_gap",
        &D::bond_gap,
        "m",
@@ -172,8 +185,13 @@ const std::vector<Field<DemMaterialSpec>>& material_fields() {
   using M = DemMaterialSpec;
   static const std::vector<Field<M>> f{
       {"density", &M::density, "kg/m^3", positive(), {}, "sphere density"},
-      {"E", &M::young, "Pa", positive(), {}, "Young's modulus (contact stiffness, SPEC 3.1)"},
-      {"nu", &M::nu, "-", positive(), {}, "Poisson's ratio (tangential stiffness)"},
+      {"E", &M::young, "Pa", positive(), {}, "Young's modulus (contact stiffness, SPEC 3.1, or Hertz's)"},
+      {"nu",
+       &M::nu,
+       "-",
+       between(-1, true, INFINITY, false),
+       {},
+       "linear_spring: shear-to-normal stiffness ratio (> 0); hertz_mindlin: Poisson's ratio (< 0.5)"},
       {"phi", &M::phi_deg, "degrees", between(0, false, 90, true), {}, "friction angle"},
       {"restitution", &M::restitution, "-", between(0, true, 1, false), {}, "coefficient of restitution"},
   };

@@ -18,7 +18,7 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
                                               const std::vector<geometry::SphereSpec>& list) {
   if (list.empty()) return list;
   const Vec3 hi(c.domain.max - c.domain.min);
-  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
+  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(Real(0.7));
   std::vector<dem::Sphere> spheres;
@@ -38,6 +38,19 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
     out.push_back({x, static_cast<double>(sp.radius)});
   }
   return out;
+}
+// The case's contact law, and every material suits it (Hertz-Mindlin: Poisson's ratio
+// below 0.5, no bonds; the linear spring: a positive stiffness ratio).
+void check_contact_law(const Case& c, DemSetup& s) {
+  s.contact_law = dem::contact_law_index(c.dem.contact);
+  if (s.contact_law < 0) throw InputError(c.source, 0, "dem.contact", "unknown contact law '" + c.dem.contact + "'");
+  dem::with_contact_law(s.contact_law, [&](auto law) {
+    for (std::size_t k = 0; k < s.materials.size(); ++k) {
+      const char* key = "";
+      if (const char* why = decltype(law)::unsuitable(s.materials[k], &key))
+        throw InputError(c.source, c.dem.materials[k].line, "dem.materials." + std::to_string(k) + "." + key, why);
+    }
+  });
 }
 } // namespace
 
@@ -62,6 +75,7 @@ DemSetup dem_setup(const Case& c) {
     s.bonded = s.bonded || m.bonded;
     s.materials.push_back(mt);
   }
+  check_contact_law(c, s);
   int mesh_index = 0;
   for (const auto& w : c.dem.walls) {
     if (!w.is_mesh) {
@@ -121,7 +135,7 @@ DemSetup dem_setup(const Case& c) {
 
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {
   const Vec3 hi(c.domain.max - c.domain.min);
-  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi);
+  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
   solver.set_spheres(s.spheres);

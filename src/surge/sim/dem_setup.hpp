@@ -17,6 +17,7 @@ struct DemSetup {
   std::vector<dem::WallTriangle> triangles;
   std::vector<dem::Sphere> spheres; // local coordinates (absolute - origin)
   bool bonded = false;
+  int contact_law = 0; // index into dem::ContactLaws
   Vec3d origin{};
   // Per case DEM wall: {plane index, -1} or {-1, mesh index}.
   std::vector<std::pair<int, int>> wall_index;

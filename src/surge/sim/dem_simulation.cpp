@@ -39,8 +39,11 @@ int check_dem(const Case& c) {
   if (s.bonded)
     std::printf("bonds       %ld at the start (gap tolerance %g m)\n",
                 solver.bond_touching(static_cast<Real>(c.dem.bond_gap)), c.dem.bond_gap);
-  std::printf("time step   DEM dt = %.3g s (dt_factor %g x min sqrt(m/k_n)), about %.3g steps to t = %g s\n", dt,
-              c.dem.dt_factor, steps, c.time.end);
+  const char* scale = "";
+  dem::with_contact_law(s.contact_law, [&](auto law) { scale = decltype(law)::time_scale_name; });
+  std::printf("contact     %s\n", c.dem.contact.c_str());
+  std::printf("time step   DEM dt = %.3g s (dt_factor %g x the smallest %s), about %.3g steps to t = %g s\n", dt,
+              c.dem.dt_factor, scale, steps, c.time.end);
   std::printf("memory      about %.1f MiB\n", static_cast<double>(s.spheres.size()) * 1100.0 / 1048576.0);
   return 0;
 }
