@@ -42,21 +42,29 @@ if ! command -v lmp >/dev/null 2>&1; then
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# Three rows per size: surge's linear spring with shear history only against LAMMPS's
+# gran/hooke/history (the same model), surge's full model (rolling, twisting, intact
+# bonds) against the same LAMMPS run, Hertz-Mindlin against LAMMPS's granular
+# hertz/material with Mindlin tangential stiffness.
 for n in 20000 100000; do
-  surge_row=$(build/cpu/benchmarks/bench_dem $n 2000 1)
+ for pair in "hooke hooke" "full hooke" "hertz_mindlin hertz_mindlin"; do
+  read -r model lmodel <<<"$pair"
+  surge_row=$(build/cpu/benchmarks/bench_dem $n 2000 1 "$model")
   read -r nx ny nz < <(/usr/bin/python3 -c "import math; n=$n; nx=int(math.pow(n/2, 1/3)+1e-9)*2; ny=nx//2; print(nx, ny, n//(nx*ny))")
   OMP_NUM_THREADS=1 lmp -in benchmarks/lammps_dem_lattice.in -var nx "$nx" -var ny "$ny" -var nz "$nz" -var steps 2000 \
-    -log none -screen "$tmp/lmp_$n.txt" >/dev/null
-  /usr/bin/python3 - "$surge_row" "$tmp/lmp_$n.txt" <<'PY' | tee -a "$out"
+    -var model "$lmodel" -log none -screen "$tmp/lmp_$n.txt" >/dev/null
+  /usr/bin/python3 - "$surge_row" "$tmp/lmp_$n.txt" "$lmodel" <<'PY' | tee -a "$out"
 import json, re, sys
 surge = json.loads(sys.argv[1])
 loop = [l for l in open(sys.argv[2]) if l.startswith("Loop time")][-1]
 t, steps, atoms = re.match(r"Loop time of ([0-9.e+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", loop).groups()
 lmp = int(steps) * int(atoms) / float(t)
-print(json.dumps({"bench": "dem_vs_lammps", "spheres": surge["spheres"], "lammps_atoms": int(atoms), "threads": 1,
+print(json.dumps({"bench": "dem_vs_lammps", "surge_model": surge["model"], "lammps_model": sys.argv[3],
+                  "spheres": surge["spheres"], "lammps_atoms": int(atoms), "threads": 1,
                   "surge_sphere_steps_per_s": surge["sphere_steps_per_s"], "lammps_sphere_steps_per_s": lmp,
                   "surge_over_lammps": surge["sphere_steps_per_s"] / lmp,
                   "surge_contacts_per_sphere": surge["contacts_per_sphere"],
                   "surge_bytes_per_sphere": surge["bytes_per_sphere"]}))
 PY
+ done
 done

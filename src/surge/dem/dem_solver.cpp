@@ -520,8 +520,12 @@ void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
           return;
         }
         const std::uint32_t id = v.id[i];
-        const Vec3 f = local_damping(v.force[i] + v.ext_force[id] + gravity * v.mass[i], v.vel[i], ad);
-        const Vec3 m = local_damping(v.torque[i] + v.ext_torque[id], v.omega[i], ad);
+        Vec3 f = v.force[i] + v.ext_force[id] + gravity * v.mass[i];
+        Vec3 m = v.torque[i] + v.ext_torque[id];
+        if (ad > 0) { // the same for every sphere: no per-sphere branches on the signs of v (dynamic runs)
+          f = local_damping(f, v.vel[i], ad);
+          m = local_damping(m, v.omega[i], ad);
+        }
         v.vel[i] += f * (dt / v.mass[i]);
         v.pos[i] += v.vel[i] * dt;
         const Vec3 w = (v.omega[i] += m * (dt / v.inertia[i]));
