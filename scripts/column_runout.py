@@ -42,13 +42,15 @@ for run in args.runs:
     ahead = len(xs) - 1 - (gaps[0] if len(gaps) else len(xs) - 1)
     a = H0 / L0
     rel = (L - L0) / L0
-    rows.append((a, rel))
-    print(f"| {os.path.basename(run.rstrip('/'))} | {a:.2f} | {L0:.3f} | {L:.3f} | {rel:.2f} | {float(lube(a)):.2f} | {rel / float(lube(a)):.2f} | {ahead} |")
-    ax1.scatter(last["position"][:, 0], last["position"][:, 2], s=3, label=f"a = {a:.1f}, t = {frames[-1][0]:.2f} s")
+    name = os.path.basename(run.rstrip('/'))
+    rows.append((a, rel, name))
+    print(f"| {name} | {a:.2f} | {L0:.3f} | {L:.3f} | {rel:.2f} | {float(lube(a)):.2f} | {rel / float(lube(a)):.2f} | {ahead} |")
+    ax1.scatter(last["position"][:, 0], last["position"][:, 2], s=3, label=f"{name}: a = {a:.1f}, t = {frames[-1][0]:.2f} s")
 aa = np.linspace(0.3, 4, 100)
 ax0.plot(aa, lube(aa), "k-", label="Lube et al. 2005")
-for a, rel in rows:
-    ax0.plot(a, rel, "ro")
+markers = "os^vD<>"
+for k, (a, rel, name) in enumerate(rows):
+    ax0.plot(a, rel, markers[k % len(markers)], label=name)
 ax0.set_xlabel("a = H0 / L0")
 ax0.set_ylabel("(L_inf - L0) / L0")
 ax0.legend()
