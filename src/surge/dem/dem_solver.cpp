@@ -419,11 +419,11 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
 }
 
 // The largest squared displacement of any sphere since the list was built.
-Real max_displacement2(const DemView& v, const Vec3* built) {
+Real max_displacement2(const DemView& v) {
   return par::parallel_reduce(
       v.n, Real(0),
       SURGE_LAMBDA(int i) {
-        const Vec3 d = v.pos[i] - built[i];
+        const Vec3 d = v.pos[i] - v.pos_built[i];
         return dot(d, d);
       },
       par::Max{});
@@ -599,6 +599,13 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
     id.push_back(static_cast<std::uint32_t>(k));
     max_radius_ = std::max(max_radius_, r);
   }
+  // Every per-sphere buffer sized and cleared (a value-initialised element: zero, an
+  // empty contact slot), then the given state uploaded and the list marked empty.
+  DemView unused{};
+  for_each_sphere_field(*this, unused, [&](auto& b, auto&, int block, unsigned) {
+    b.resize(s.size() * static_cast<std::size_t>(block));
+    par::fill(b, std::remove_reference_t<decltype(*b.data())>{});
+  });
   par::upload(pos_, pos);
   par::upload(vel_, vel);
   par::upload(omega_, omega);
@@ -608,66 +615,24 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::upload(inertia_, inertia);
   par::upload(material_, mat);
   par::upload(fixed_, fixed);
-  ext_force_.resize(s.size());
-  ext_torque_.resize(s.size());
-  par::fill(ext_force_, Vec3{});
-  par::fill(ext_torque_, Vec3{});
   par::upload(id_, id);
-  force_.resize(s.size());
-  torque_.resize(s.size());
-  par::fill(force_, Vec3{});
-  par::fill(torque_, Vec3{});
-  broken_.resize(s.size());
-  par::fill(broken_, 0U);
-  ncontact_.resize(s.size());
-  par::fill(ncontact_, 0U);
+  par::fill(nbr_, no_partner);
+  par::fill(entry_, no_partner);
   hist_.resize(0);
   n_pairs_ = 0;
-  pair_begin_.resize(s.size());
-  par::fill(pair_begin_, 0U);
-  pair_count_.resize(s.size());
-  par::fill(pair_count_, 0U);
-  wall_hist_.resize(s.size() * max_wall_slots);
-  par::fill(wall_hist_, ContactSlot{});
-  nbr_.resize(s.size() * max_contacts);
-  par::fill(nbr_, no_partner);
-  nnbr_.resize(s.size());
-  par::fill(nnbr_, 0U);
-  entry_.resize(s.size() * max_contacts);
-  par::fill(entry_, no_partner);
-  pos_built_.resize(s.size());
   list_valid_ = false;
   skin_ = Real(0.1) * max_radius_;
   grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
 }
 
 DemView DemSolver::view() {
-  return {n_,
-          pos_.data(),
-          vel_.data(),
-          omega_.data(),
-          force_.data(),
-          torque_.data(),
-          quat_.data(),
-          radius_.data(),
-          mass_.data(),
-          inertia_.data(),
-          material_.data(),
-          id_.data(),
-          nbr_.data(),
-          nnbr_.data(),
-          entry_.data(),
-          pair_begin_.data(),
-          pair_count_.data(),
-          hist_.data(),
-          pair_.data(),
-          law_.data(),
-          wall_hist_.data(),
-          broken_.data(),
-          ncontact_.data(),
-          fixed_.data(),
-          ext_force_.data(),
-          ext_torque_.data()};
+  DemView v{};
+  v.n = n_;
+  for_each_sphere_field(*this, v, [](auto& b, auto& ptr, int, unsigned) { ptr = b.data(); });
+  v.hist = hist_.data();
+  v.pair = pair_.data();
+  v.law = law_.data();
+  return v;
 }
 
 Real DemSolver::critical_dt(Real factor) const {
@@ -687,20 +652,10 @@ void DemSolver::sort_spheres() {
   // rebuild_list makes new ones.
   grid_.sort(pos_.data(), nullptr, n_);
   const std::uint32_t* perm = grid_.permutation();
-  par::gather(pos_, tmp3_, perm, n_);
-  par::gather(vel_, tmp3_, perm, n_);
-  par::gather(omega_, tmp3_, perm, n_);
-  par::gather(quat_, tmp1_, perm, n_, 4);
-  par::gather(radius_, tmp1_, perm, n_);
-  par::gather(mass_, tmp1_, perm, n_);
-  par::gather(inertia_, tmp1_, perm, n_);
-  par::gather(material_, tmpb_, perm, n_);
-  par::gather(fixed_, tmpb_, perm, n_);
-  par::gather(id_, tmpu_, perm, n_);
-  par::gather(broken_, tmpu_, perm, n_);
-  par::gather(pair_begin_, tmpu_, perm, n_);
-  par::gather(pair_count_, tmpu_, perm, n_);
-  par::gather(wall_hist_, tmph_, perm, n_, max_wall_slots);
+  DemView unused{};
+  for_each_sphere_field(*this, unused, [&](auto& b, auto&, int block, unsigned use) {
+    if (use & kSorted) par::gather(b, scratch_for(b), perm, n_, block);
+  });
   grid_.build_cell_start(n_);
 }
 
@@ -733,7 +688,7 @@ void DemSolver::rebuild_list() {
 bool DemSolver::list_stale() {
   if (!list_valid_) return true;
   const Real half = skin() / 2;
-  return detail::max_displacement2(view(), pos_built_.data()) > half * half;
+  return detail::max_displacement2(view()) > half * half;
 }
 
 void DemSolver::step(Real dt) {
@@ -780,33 +735,37 @@ void load_buffer(const std::string& in, std::size_t& pos, par::Buffer<T>& b, std
 }
 } // namespace
 
-// The buffers that make up the state, with their elements per sphere: one list for
-// save() and restore(), so they cannot drift apart.
-template <class Self, class F>
-void DemSolver::for_each_state_buffer(Self& s, F&& f) {
-  f(s.pos_, 1);
-  f(s.vel_, 1);
-  f(s.omega_, 1);
-  f(s.quat_, 4);
-  f(s.radius_, 1);
-  f(s.mass_, 1);
-  f(s.inertia_, 1);
-  f(s.material_, 1);
-  f(s.fixed_, 1);
-  f(s.id_, 1);
-  f(s.broken_, 1);
-  f(s.ncontact_, 1);
-  f(s.force_, 1);
-  f(s.torque_, 1);
-  f(s.ext_force_, 1);
-  f(s.ext_torque_, 1);
-  f(s.wall_hist_, max_wall_slots);
-  f(s.nbr_, max_contacts);
-  f(s.nnbr_, 1);
-  f(s.entry_, max_contacts);
-  f(s.pair_begin_, 1);
-  f(s.pair_count_, 1);
-  f(s.pos_built_, 1);
+// The per-sphere buffers, declared once: with the view's pointer to each, its elements
+// per sphere and how it travels (kSorted: carried through the sort, the others are
+// recomputed or indexed by id; every one is saved, in this order, which is the
+// checkpoint's). set_spheres sizes and clears them, sort_spheres gathers the sorted ones,
+// save and restore write and read them all, view() points the kernels at them.
+template <class Self, class View, class F>
+void DemSolver::for_each_sphere_field(Self& s, View& v, F&& f) {
+  constexpr unsigned sorted = kSorted;
+  f(s.pos_, v.pos, 1, sorted);
+  f(s.vel_, v.vel, 1, sorted);
+  f(s.omega_, v.omega, 1, sorted);
+  f(s.quat_, v.quat, 4, sorted);
+  f(s.radius_, v.radius, 1, sorted);
+  f(s.mass_, v.mass, 1, sorted);
+  f(s.inertia_, v.inertia, 1, sorted);
+  f(s.material_, v.material, 1, sorted);
+  f(s.fixed_, v.fixed, 1, sorted);
+  f(s.id_, v.id, 1, sorted);
+  f(s.broken_, v.broken, 1, sorted);
+  f(s.ncontact_, v.ncontact, 1, 0U);    // this step's, recomputed
+  f(s.force_, v.force, 1, 0U);          // this step's, recomputed
+  f(s.torque_, v.torque, 1, 0U);        // this step's, recomputed
+  f(s.ext_force_, v.ext_force, 1, 0U);  // by id
+  f(s.ext_torque_, v.ext_torque, 1, 0U); // by id
+  f(s.wall_hist_, v.wall_hist, max_wall_slots, sorted);
+  f(s.nbr_, v.nbr, max_contacts, 0U);   // the list: rebuilt after a sort
+  f(s.nnbr_, v.nnbr, 1, 0U);
+  f(s.entry_, v.entry, max_contacts, 0U);
+  f(s.pair_begin_, v.pair_begin, 1, sorted); // each sphere keeps its pairs' range
+  f(s.pair_count_, v.pair_count, 1, sorted);
+  f(s.pos_built_, v.pos_built, 1, 0U); // set when the list is built
 }
 
 std::string DemSolver::save() const {
@@ -816,7 +775,8 @@ std::string DemSolver::save() const {
   // The list as it stands (a restored run rebuilds it exactly when the straight run does).
   const std::uint64_t valid = list_valid_ ? 1 : 0;
   out.append(reinterpret_cast<const char*>(&valid), sizeof valid);
-  for_each_state_buffer(*this, [&](const auto& b, int) { save_buffer(out, b); });
+  DemView unused{};
+  for_each_sphere_field(*this, unused, [&](const auto& b, auto&, int, unsigned) { save_buffer(out, b); });
   save_buffer(out, hist_); // the pairs' histories
   return out;
 }
@@ -832,8 +792,10 @@ void DemSolver::restore(const std::string& bytes) {
   if (valid > 1) throw std::invalid_argument("DEM state of an older surge (before neighbour lists)");
   std::size_t pos = 2 * sizeof n;
   const auto N = static_cast<std::size_t>(n_);
-  for_each_state_buffer(*this,
-                        [&](auto& b, int block) { load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block)); });
+  DemView unused{};
+  for_each_sphere_field(*this, unused, [&](auto& b, auto&, int block, unsigned) {
+    load_buffer(bytes, pos, b, N * static_cast<std::size_t>(block));
+  });
   // The pairs: as many as the restored A counts say.
   const auto counts = par::download(pair_count_);
   std::size_t pairs = 0;

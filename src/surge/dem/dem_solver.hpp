@@ -101,6 +101,7 @@ struct DemView {
   std::uint32_t* ncontact;                // contacts of the last step
   std::uint8_t* fixed;                    // 1: not integrated
   const Vec3 *ext_force, *ext_torque;     // by sphere id
+  Vec3* pos_built;                        // positions when the list was built
 };
 
 class DemSolver {
@@ -154,8 +155,23 @@ public:
   // Timing of the steps so far, seconds: sort (neighbour search + reordering), everything.
 
 private:
-  template <class Self, class F>
-  static void for_each_state_buffer(Self& s, F&& f);
+  enum FieldUse : unsigned { kSorted = 1 };
+  template <class Self, class View, class F>
+  static void for_each_sphere_field(Self& s, View& v, F&& f);
+  // The sort's scratch buffer for a buffer of T.
+  template <class T>
+  par::Buffer<T>& scratch_for(par::Buffer<T>& /*b*/) {
+    if constexpr (std::is_same_v<T, Vec3>)
+      return tmp3_;
+    else if constexpr (std::is_same_v<T, Real>)
+      return tmp1_;
+    else if constexpr (std::is_same_v<T, std::uint8_t>)
+      return tmpb_;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+      return tmpu_;
+    else
+      return tmph_;
+  }
   void sort_spheres();
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
   void rebuild_list();
