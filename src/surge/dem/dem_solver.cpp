@@ -217,99 +217,22 @@ template <class L>
 void pair_laws(const DemView& v, const Material* mats) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int a) {
-        const std::size_t base = static_cast<std::size_t>(a) * max_contacts;
-        for (std::uint32_t k = 0; k < v.nnbr[a]; ++k) {
-          const int b = static_cast<int>(v.nbr[base + k]);
-          if (v.id[a] > v.id[b]) continue;
+        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, a, [&](std::uint32_t, int b, std::uint32_t p) {
           const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          store_law(v.law[v.entry[base + k]],
-                    L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar));
-        }
-      });
-}
-
-// The old pair (A-side history) of spheres a (lower id) and partner id b: searched among
-// a's pairs of the last list, which stay where they were while the spheres are sorted.
-SURGE_HD inline std::uint32_t find_pair(const DemView& v, const ContactSlot* old_hist, int a, std::uint32_t id_b) {
-  const std::uint32_t p0 = v.pair_begin[a], p1 = p0 + v.pair_count[a];
-  for (std::uint32_t p = p0; p < p1; ++p)
-    if (old_hist[p].partner == id_b) return p;
-  return no_partner;
-}
-
-// List pass 1: each sphere's partners, the spheres within r_i + r_j + skin and those
-// bonded to it (within the grid's reach), in the grid's order (cells, then sorted index:
-// the same on any thread count). Both spheres of a pair read the same old pair to decide,
-// so they list each other or neither. entry[k] holds the old pair of an A-side entry
-// (lower id first; no_partner for a new pair); a[i] counts the A-side entries. Returns the
-// most partners any sphere wanted (more than max_contacts: some were left out).
-int list_partners(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
-                  std::uint32_t* a_count) {
-  return par::parallel_reduce(
-      v.n, 0,
-      SURGE_LAMBDA(int i) {
-        std::uint32_t* nb = v.nbr + static_cast<std::size_t>(i) * max_contacts;
-        std::uint32_t* entry = v.entry + static_cast<std::size_t>(i) * max_contacts;
-        const Vec3 xi = v.pos[i];
-        const Real ri = v.radius[i];
-        const std::uint32_t idi = v.id[i];
-        int cnt = 0, wanted = 0;
-        std::uint32_t as_a = 0;
-        neighbour::for_each_neighbour(g, xi, search * search, [&](int j, const Vec3&, Real r2) {
-          if (j == i) return;
-          const std::uint32_t idj = v.id[j];
-          const bool i_is_a = idi < idj;
-          const std::uint32_t old = i_is_a ? find_pair(v, old_hist, i, idj) : find_pair(v, old_hist, j, idi);
-          const bool bonded = old != no_partner && old_hist[old].bonded != 0;
-          const Real cut = ri + v.radius[j] + skin;
-          if (!(r2 < cut * cut) && !bonded) return;
-          if (++wanted > max_contacts) return;
-          nb[cnt] = static_cast<std::uint32_t>(j);
-          entry[cnt] = i_is_a ? old : no_partner;
-          as_a += i_is_a ? 1U : 0U;
-          ++cnt;
+          store_law(v.law[p], L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar));
         });
-        v.nnbr[i] = static_cast<std::uint32_t>(cnt);
-        a_count[i] = as_a;
-        return wanted;
-      },
-      par::Max{});
-}
-
-// List pass 2 (pair_begin now the exclusive scan of the A counts): each A-side entry gets
-// the next pair of its sphere, with the old pair's history or a fresh one.
-void fill_pairs(const DemView& v, const ContactSlot* old_hist) {
-  par::parallel_for(
-      v.n, SURGE_LAMBDA(int i) {
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
-        std::uint32_t p = v.pair_begin[i];
-        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
-          const std::uint32_t j = v.nbr[base + k];
-          if (v.id[i] > v.id[j]) continue;
-          const std::uint32_t old = v.entry[base + k];
-          ContactSlot s = old != no_partner ? old_hist[old] : ContactSlot{};
-          s.partner = v.id[j];
-          v.hist[p] = s;
-          v.entry[base + k] = p++;
-        }
       });
 }
 
-// List pass 3: each B-side entry takes the pair its partner's entry for it holds
-// (no_partner when the partner's list was full).
-void link_pairs(const DemView& v) {
-  par::parallel_for(
-      v.n, SURGE_LAMBDA(int i) {
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
-        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
-          const std::uint32_t j = v.nbr[base + k];
-          if (v.id[i] < v.id[j]) continue;
-          const std::size_t jb = static_cast<std::size_t>(j) * max_contacts;
-          std::uint32_t at = no_partner;
-          for (std::uint32_t q = 0; q < v.nnbr[j]; ++q)
-            if (v.nbr[jb + q] == static_cast<std::uint32_t>(i)) at = v.entry[jb + q];
-          v.entry[base + k] = at;
-        }
+// List pass 1 of the DEM: each sphere lists the spheres within r_i + r_j + skin and those
+// bonded to it (within the grid's reach `search`); returns the most any sphere wanted.
+int list_spheres(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
+                 std::uint32_t* a_count) {
+  return neighbour::list_partners<max_contacts>(
+      v.list, v.id, v.pos, v.n, g, old_hist, search, a_count,
+      SURGE_LAMBDA(int i, int j, Real r2, const ContactSlot* old) {
+        const Real cut = v.radius[i] + v.radius[j] + skin;
+        return r2 < cut * cut || (old != nullptr && old->bonded != 0);
       });
 }
 
@@ -319,14 +242,10 @@ template <class L>
 void pair_pass(const DemView& v, const Material* mats, Real dt) {
   par::parallel_for_uneven(
       v.n, SURGE_LAMBDA(int i) {
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
-        const std::uint32_t idi = v.id[i];
-        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
-          const int j = static_cast<int>(v.nbr[base + k]);
-          if (idi > v.id[j]) continue; // the partner is A: it evaluates the pair
-          const std::uint32_t p = v.entry[base + k];
+        // The pairs i is A of (the partner evaluates the others).
+        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int j, std::uint32_t p) {
           const Real dist = norm(xi - v.pos[j]);
           const bool held = v.hist[p].bonded != 0; // a bond acts across a gap too
           const std::uint32_t partner = v.hist[p].partner;
@@ -335,13 +254,13 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
             v.hist[p] = ContactSlot{};
             v.hist[p].partner = partner;
             v.pair[p] = PairForce{};
-            continue;
+            return;
           }
           const PairResult r = sphere_pair<L>(v, mats, i, j, p, dist, dt);
           v.hist[p] = r.slot;
           v.hist[p].partner = partner;
           v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
-        }
+        });
       });
 }
 
@@ -352,22 +271,16 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
                  int n_tris, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
-        const std::uint32_t* nb = v.nbr + base;
-        const int listed = static_cast<int>(v.nnbr[i]);
         int used = 0;
         std::uint32_t broken = 0;
         Vec3 f{}, t{};
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         const Material mi = mats[v.material[i]];
-        const std::uint32_t idi = v.id[i];
-        for (int k = 0; k < listed; ++k) {
-          const bool i_is_a = idi < v.id[nb[k]];
-          const std::uint32_t at = v.entry[base + k];
-          if (at == no_partner) continue; // the partner's list was full
+        neighbour::for_each_listed<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
+          if (at == no_partner) return; // the partner's list was full
           const PairForce& pf = v.pair[at];
-          if (!(pf.flags & 1U)) continue;
+          if (!(pf.flags & 1U)) return;
           ++used;
           if (pf.flags & 2U) ++broken;
           if (i_is_a) {
@@ -377,7 +290,7 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
             f -= pf.force_a;
             t += pf.torque_b;
           }
-        }
+        });
         // Wall contacts: history by partner id in the sphere's few wall slots.
         ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
         ContactSlot old_w[max_wall_slots];
@@ -488,13 +401,11 @@ void bond(const DemView& v, const Material* mats, Real gap) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         if (!mats[v.material[i]].bonded) return;
-        const std::size_t base = static_cast<std::size_t>(i) * max_contacts;
-        for (std::uint32_t k = 0; k < v.nnbr[i]; ++k) {
-          const int j = static_cast<int>(v.nbr[base + k]);
-          if (v.id[i] > v.id[j] || !mats[v.material[j]].bonded) continue;
-          if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) continue;
-          v.hist[v.entry[base + k]].bonded = 1;
-        }
+        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int j, std::uint32_t p) {
+          if (!mats[v.material[j]].bonded) return;
+          if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) return;
+          v.hist[p].bonded = 1;
+        });
       });
 }
 
@@ -666,7 +577,7 @@ void DemSolver::rebuild_list() {
   hist_.swap(hist_old_);
   tmpu_.resize(static_cast<std::size_t>(n_));
   DemView v = view();
-  const int wanted = detail::list_partners(v, grid_.view(v.pos), hist_old_.data(), list_reach(), skin(), tmpu_.data());
+  const int wanted = detail::list_spheres(v, grid_.view(v.pos), hist_old_.data(), list_reach(), skin(), tmpu_.data());
   if (wanted > max_contacts)
     throw std::runtime_error("DEM: a sphere has " + std::to_string(wanted) +
                              " neighbours within r_i + r_j + skin, more than the " + std::to_string(max_contacts) +
@@ -678,8 +589,8 @@ void DemSolver::rebuild_list() {
   pair_.resize(n_pairs_);
   law_.resize(n_pairs_);
   v = view();
-  detail::fill_pairs(v, hist_old_.data());
-  detail::link_pairs(v);
+  neighbour::fill_pairs<max_contacts>(v.list, v.id, n_, hist_old_.data(), hist_.data());
+  neighbour::link_pairs<max_contacts>(v.list, v.id, n_);
   with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
   par::copy(pos_built_, pos_);
   list_valid_ = true;
@@ -760,11 +671,11 @@ void DemSolver::for_each_sphere_field(Self& s, View& v, F&& f) {
   f(s.ext_force_, v.ext_force, 1, 0U);  // by id
   f(s.ext_torque_, v.ext_torque, 1, 0U); // by id
   f(s.wall_hist_, v.wall_hist, max_wall_slots, sorted);
-  f(s.nbr_, v.nbr, max_contacts, 0U);   // the list: rebuilt after a sort
-  f(s.nnbr_, v.nnbr, 1, 0U);
-  f(s.entry_, v.entry, max_contacts, 0U);
-  f(s.pair_begin_, v.pair_begin, 1, sorted); // each sphere keeps its pairs' range
-  f(s.pair_count_, v.pair_count, 1, sorted);
+  f(s.nbr_, v.list.nbr, max_contacts, 0U); // the list: rebuilt after a sort
+  f(s.nnbr_, v.list.nnbr, 1, 0U);
+  f(s.entry_, v.list.entry, max_contacts, 0U);
+  f(s.pair_begin_, v.list.pair_begin, 1, sorted); // each sphere keeps its pairs' range
+  f(s.pair_count_, v.list.pair_count, 1, sorted);
   f(s.pos_built_, v.pos_built, 1, 0U); // set when the list is built
 }
 

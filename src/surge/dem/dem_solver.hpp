@@ -19,6 +19,7 @@
 #pragma once
 #include "surge/dem/contact_law.hpp"
 #include "surge/dem/rigid_state.hpp"
+#include "surge/neighbour/pair_list.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
 
@@ -89,10 +90,7 @@ struct DemView {
   Real *radius, *mass, *inertia;
   std::uint8_t* material;
   std::uint32_t* id;
-  std::uint32_t* nbr;                     // max_contacts per sphere: the listed partners' indices
-  std::uint32_t* nnbr;                    // listed partners per sphere
-  std::uint32_t* entry;                   // max_contacts per sphere: the pair of each listed partner
-  std::uint32_t *pair_begin, *pair_count; // the pairs a sphere is A of: [begin, begin + count)
+  neighbour::PairListView list;           // the listed partners (max_contacts each) and the pairs
   ContactSlot* hist;                      // by pair: the A side's history (partner: B's id)
   PairForce* pair;                        // by pair: the A side's evaluation this step
   PairLaw* law;                           // by pair: the contact law's constants
