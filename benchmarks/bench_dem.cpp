@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
   getrusage(RUSAGE_SELF, &u);
   const double n = static_cast<double>(sp.size());
   const double sps = n * static_cast<double>(steps) / wall;
-  std::printf("{\"model\": \"%s\", \"spheres\": %zu, \"threads\": %d, \"steps\": %ld, \"bonds\": %ld, \"sphere_steps_per_s\": %.4g, "
+  std::printf("{\"model\": \"%s\", \"spheres\": %zu, \"threads\": %d, \"steps\": %ld, \"bonds\": %ld, "
+              "\"sphere_steps_per_s\": %.4g, "
               "\"contacts_per_sphere\": %.2f, \"ns_per_contact_per_core\": %.1f, \"bytes_per_sphere\": %.0f, "
               "\"seconds\": %.2f, \"backend\": \"%s\", \"phases_ms_share\": %s}\n",
               model.c_str(), sp.size(), par::threads(), steps, bonds, sps, contacts / n,

@@ -221,17 +221,29 @@ TEST(HertzMindlin, BadInputNamesFileLineAndKey) {
     const std::string e = error_of({std::string("dem.materials.0.nu=") + nu});
     EXPECT_NE(e.find("hm.yaml"), std::string::npos) << e;
     EXPECT_NE(e.find("dem.materials.0.nu"), std::string::npos) << e;
-    const auto line = std::count(dem_case.begin(), dem_case.begin() + static_cast<long>(dem_case.find("- {name: rock")),
-                                 '\n') + 1;
+    const auto line =
+        std::count(dem_case.begin(), dem_case.begin() + static_cast<long>(dem_case.find("- {name: rock")), '\n') + 1;
     EXPECT_NE(e.find("hm.yaml:" + std::to_string(line) + ":"), std::string::npos) << e; // the material's line
   }
   const std::string bonded = error_of({"dem.materials.0.bond={cn: 1000, cs: 1000}"});
   EXPECT_NE(bonded.find("dem.materials.0.bond"), std::string::npos) << bonded;
   EXPECT_NE(error_of({"dem.materials.0.E=0"}).find("must be positive"), std::string::npos);
   EXPECT_NE(error_of({"dem.materials.0.restitution=1.5"}).find("dem.materials.0.restitution"), std::string::npos);
+  // A step above the law's guidance (dt_factor > 0.2) is a warning of surge check that
+  // names the largest step: 0.2 times the Rayleigh time here.
+  for (const char* f : {"0.1", "0.2", "0.3"}) {
+    const Case c = io::read_case_text(dem_case, "hm.yaml", {std::string("dem.dt_factor=") + f});
+    const sim::DemSetup setup = sim::dem_setup(c);
+    const DemSolver solver = sim::make_dem_solver(c, setup);
+    const std::string w = sim::dem_step_warning(c, solver);
+    EXPECT_EQ(w.empty(), std::string(f) != "0.3") << f << ": " << w;
+    char largest[32];
+    std::snprintf(largest, sizeof largest, "%.3g s", static_cast<double>(solver.critical_dt(0.2f)));
+    if (!w.empty()) { EXPECT_NE(w.find(largest), std::string::npos) << w; }
+  }
   // The linear spring takes nu as a stiffness ratio: positive, any size.
-  EXPECT_NO_THROW((void)sim::dem_setup(io::read_case_text(dem_case, "hm.yaml", {"dem.contact=linear_spring",
-                                                                                  "dem.materials.0.nu=0.7"})));
+  EXPECT_NO_THROW((void)sim::dem_setup(
+      io::read_case_text(dem_case, "hm.yaml", {"dem.contact=linear_spring", "dem.materials.0.nu=0.7"})));
   EXPECT_NE(error_of({"dem.contact=linear_spring", "dem.materials.0.nu=0"}).find("dem.materials.0.nu"),
             std::string::npos);
 }

@@ -119,9 +119,9 @@ struct DemWallSpec {
 };
 
 struct DemConfig {
-  double dt_factor = 0.1;   // dt = factor * min sqrt(m / k_n)
-  double bond_gap = 1e-4;   // spheres of bonded materials closer than this are bonded at the start [m]
-  double local_damping = 0; // Cundall local damping a_d (0 for dynamic runs; ~0.7 to settle a pack)
+  double dt_factor = 0.1;                // dt = factor * min sqrt(m / k_n)
+  double bond_gap = 1e-4;                // spheres of bonded materials closer than this are bonded at the start [m]
+  double local_damping = 0;              // Cundall local damping a_d (0 for dynamic runs; ~0.7 to settle a pack)
   std::string contact = "linear_spring"; // the contact law by name (dem/contact_law.hpp)
   std::vector<DemMaterialSpec> materials;
   std::vector<DemPackSpec> packs;

@@ -31,18 +31,18 @@ struct PairLaw {
 template <class L>
 concept ContactLaw = std::is_trivially_copyable_v<typename L::Pair> && sizeof(typename L::Pair) <= sizeof(PairLaw) &&
                      requires(const Material& m, Real x, bool b, const typename L::Pair& p, const char** key) {
-                       { L::name } -> std::convertible_to<const char*>;
-                       { L::time_scale_name } -> std::convertible_to<const char*>;
-                       { L::damps_shear } -> std::convertible_to<bool>;
-                       { L::damping(x) } -> std::same_as<Real>;
-                       { L::unsuitable(m, key) } -> std::same_as<const char*>;
-                       { L::pair(m, m, x, x, x) } -> std::same_as<typename L::Pair>;
-                       { L::wall(m, m, x, x) } -> std::same_as<typename L::Pair>;
-                       { L::normal_force(p, x, x, b) } -> std::same_as<Real>;
-                       { L::shear_stiffness(p, x) } -> std::same_as<Real>;
-                       { L::shear_damping(p, x) } -> std::same_as<Real>;
-                       { L::time_scale(m, x, x) } -> std::same_as<Real>;
-                     };
+  { L::name } -> std::convertible_to<const char*>;
+  { L::time_scale_name } -> std::convertible_to<const char*>;
+  { L::damps_shear } -> std::convertible_to<bool>;
+  { L::damping(x) } -> std::same_as<Real>;
+  { L::unsuitable(m, key) } -> std::same_as<const char*>;
+  { L::pair(m, m, x, x, x) } -> std::same_as<typename L::Pair>;
+  { L::wall(m, m, x, x) } -> std::same_as<typename L::Pair>;
+  { L::normal_force(p, x, x, b) } -> std::same_as<Real>;
+  { L::shear_stiffness(p, x) } -> std::same_as<Real>;
+  { L::shear_damping(p, x) } -> std::same_as<Real>;
+  { L::time_scale(m, x, x) } -> std::same_as<Real>;
+};
 
 template <ContactLaw... L>
 struct LawList {};

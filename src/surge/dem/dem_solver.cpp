@@ -277,20 +277,21 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         const Material mi = mats[v.material[i]];
-        neighbour::for_each_listed<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
-          if (at == no_partner) return; // the partner's list was full
-          const PairForce& pf = v.pair[at];
-          if (!(pf.flags & 1U)) return;
-          ++used;
-          if (pf.flags & 2U) ++broken;
-          if (i_is_a) {
-            f += pf.force_a;
-            t += pf.torque_a;
-          } else {
-            f -= pf.force_a;
-            t += pf.torque_b;
-          }
-        });
+        neighbour::for_each_listed<max_contacts>(v.list, v.id, i,
+                                                 [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
+                                                   if (at == no_partner) return; // the partner's list was full
+                                                   const PairForce& pf = v.pair[at];
+                                                   if (!(pf.flags & 1U)) return;
+                                                   ++used;
+                                                   if (pf.flags & 2U) ++broken;
+                                                   if (i_is_a) {
+                                                     f += pf.force_a;
+                                                     t += pf.torque_a;
+                                                   } else {
+                                                     f -= pf.force_a;
+                                                     t += pf.torque_b;
+                                                   }
+                                                 });
         // Wall contacts: history by partner id in the sphere's few wall slots.
         ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
         ContactSlot old_w[max_wall_slots];
@@ -665,10 +666,10 @@ void DemSolver::for_each_sphere_field(Self& s, View& v, F&& f) {
   f(s.fixed_, v.fixed, 1, sorted);
   f(s.id_, v.id, 1, sorted);
   f(s.broken_, v.broken, 1, sorted);
-  f(s.ncontact_, v.ncontact, 1, 0U);    // this step's, recomputed
-  f(s.force_, v.force, 1, 0U);          // this step's, recomputed
-  f(s.torque_, v.torque, 1, 0U);        // this step's, recomputed
-  f(s.ext_force_, v.ext_force, 1, 0U);  // by id
+  f(s.ncontact_, v.ncontact, 1, 0U);     // this step's, recomputed
+  f(s.force_, v.force, 1, 0U);           // this step's, recomputed
+  f(s.torque_, v.torque, 1, 0U);         // this step's, recomputed
+  f(s.ext_force_, v.ext_force, 1, 0U);   // by id
   f(s.ext_torque_, v.ext_torque, 1, 0U); // by id
   f(s.wall_hist_, v.wall_hist, max_wall_slots, sorted);
   f(s.nbr_, v.list.nbr, max_contacts, 0U); // the list: rebuilt after a sort

@@ -90,16 +90,16 @@ struct DemView {
   Real *radius, *mass, *inertia;
   std::uint8_t* material;
   std::uint32_t* id;
-  neighbour::PairListView list;           // the listed partners (max_contacts each) and the pairs
-  ContactSlot* hist;                      // by pair: the A side's history (partner: B's id)
-  PairForce* pair;                        // by pair: the A side's evaluation this step
-  PairLaw* law;                           // by pair: the contact law's constants
-  ContactSlot* wall_hist;                 // max_wall_slots per sphere: wall contacts, by partner id
-  std::uint32_t* broken;                  // bonds this sphere has lost so far (each bond counts on both spheres)
-  std::uint32_t* ncontact;                // contacts of the last step
-  std::uint8_t* fixed;                    // 1: not integrated
-  const Vec3 *ext_force, *ext_torque;     // by sphere id
-  Vec3* pos_built;                        // positions when the list was built
+  neighbour::PairListView list;       // the listed partners (max_contacts each) and the pairs
+  ContactSlot* hist;                  // by pair: the A side's history (partner: B's id)
+  PairForce* pair;                    // by pair: the A side's evaluation this step
+  PairLaw* law;                       // by pair: the contact law's constants
+  ContactSlot* wall_hist;             // max_wall_slots per sphere: wall contacts, by partner id
+  std::uint32_t* broken;              // bonds this sphere has lost so far (each bond counts on both spheres)
+  std::uint32_t* ncontact;            // contacts of the last step
+  std::uint8_t* fixed;                // 1: not integrated
+  const Vec3 *ext_force, *ext_torque; // by sphere id
+  Vec3* pos_built;                    // positions when the list was built
 };
 
 class DemSolver {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace surge::sim {
@@ -131,6 +132,18 @@ DemSetup dem_setup(const Case& c) {
   if (s.spheres.empty())
     throw InputError(c.source, 0, "dem.packs", "the packs hold no sphere (box smaller than a sphere?)");
   return s;
+}
+
+std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {
+  constexpr double largest_factor = 0.2;
+  if (!(c.dem.dt_factor > largest_factor)) return "";
+  char b[256];
+  std::snprintf(b, sizeof b,
+                "dem.dt_factor %g: the DEM step %.3g s is above %.3g s, %g times the contact law's time scale, the "
+                "largest its guidance allows",
+                c.dem.dt_factor, static_cast<double>(solver.critical_dt(static_cast<Real>(c.dem.dt_factor))),
+                static_cast<double>(solver.critical_dt(static_cast<Real>(largest_factor))), largest_factor);
+  return b;
 }
 
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {

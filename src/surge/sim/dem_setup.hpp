@@ -26,6 +26,10 @@ struct DemSetup {
 // Everything that can fail on input (meshes, sphere lists) fails here.
 DemSetup dem_setup(const Case& c);
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s);
+// surge check's warning when the DEM step is above the largest the contact law's
+// guidance allows (dem.dt_factor above 0.2: SPEC 3's 0.1-0.2 for the linear spring, 20 %
+// of the Rayleigh time for Hertz-Mindlin), with that step; empty when it is not.
+std::string dem_step_warning(const Case& c, const dem::DemSolver& solver);
 // The spheres' current state, by id, for write_spheres_vtp.
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 // Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.

@@ -44,6 +44,7 @@ int check_dem(const Case& c) {
   std::printf("contact     %s\n", c.dem.contact.c_str());
   std::printf("time step   DEM dt = %.3g s (dt_factor %g x the smallest %s), about %.3g steps to t = %g s\n", dt,
               c.dem.dt_factor, scale, steps, c.time.end);
+  if (const std::string w = dem_step_warning(c, solver); !w.empty()) std::printf("warning     %s\n", w.c_str());
   std::printf("memory      about %.1f MiB\n", static_cast<double>(s.spheres.size()) * 1100.0 / 1048576.0);
   return 0;
 }

@@ -178,6 +178,7 @@ int check(const Case& c) {
     std::printf("DEM step    %.3g s (dt_factor %g): about %.0f DEM sub-steps per SPH step at the first dt\n",
                 static_cast<double>(cp->coupling->dt_dem()), c.dem.dt_factor,
                 std::ceil(dt0 / static_cast<double>(cp->coupling->dt_dem())));
+    if (const std::string w = dem_step_warning(c, *cp->dem); !w.empty()) std::printf("warning     %s\n", w.c_str());
   }
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
