@@ -156,7 +156,8 @@ private:
   enum FieldUse : unsigned { kSorted = 1 };
   template <class Self, class View, class F>
   static void for_each_sphere_field(Self& s, View& v, F&& f);
-  // The sort's scratch buffer for a buffer of T.
+  // The sort's scratch buffer for a buffer of T (sort_spheres runs only at the start of
+  // rebuild_list, when hist_old_ holds nothing needed).
   template <class T>
   par::Buffer<T>& scratch_for(par::Buffer<T>& /*b*/) {
     if constexpr (std::is_same_v<T, Vec3>)
@@ -168,7 +169,7 @@ private:
     else if constexpr (std::is_same_v<T, std::uint32_t>)
       return tmpu_;
     else
-      return tmph_;
+      return hist_old_; // free while sorting: the rebuild that follows swaps the last list's pairs into it
   }
   void sort_spheres();
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
@@ -200,7 +201,7 @@ private:
   par::Buffer<std::uint8_t> material_, fixed_, tmpb_;
   par::Buffer<Vec3> ext_force_, ext_torque_;
   par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
-  par::Buffer<ContactSlot> hist_, hist_old_, wall_hist_, tmph_; // pairs; the last list's; walls; gather scratch
+  par::Buffer<ContactSlot> hist_, hist_old_, wall_hist_; // pairs; the last list's (the sort's scratch); walls
   par::Buffer<std::uint32_t> nbr_, nnbr_, entry_, pair_begin_, pair_count_;
   par::Buffer<PairForce> pair_;
   par::Buffer<PairLaw> law_;
