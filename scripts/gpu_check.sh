@@ -91,6 +91,7 @@ run() {
   step bench_spheric_1e6 90 bench_sph cases/spheric_test2.yaml 200 1 --set dp=0.0102
   step bench_spheric_6e6 90 bench_sph cases/spheric_test2.yaml 50 1 --set dp=0.0056
   step bench_dem_1e5 60 bench_dem 100000 2000 1
+  step bench_dem_hertz_1e5 40 bench_dem 100000 1000 1 hertz_mindlin
   step bench_dem_1e6 90 bench_dem 1000000 200 1
   step bench_coupling_0 60 bench_coupling 0 100 1
   step bench_coupling_1e4 60 bench_coupling 10000 100 1
