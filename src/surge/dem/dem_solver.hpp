@@ -1,12 +1,13 @@
-// DEM spheres (SPEC §3): sphere–sphere and sphere–plane contacts with per-contact
-// history (shear force, rolling and twisting rotation), Newton–Euler integration with
-// an orientation quaternion. Each sphere computes all of its own contacts and writes
+// DEM spheres (SPEC §3): sphere–sphere and sphere–wall contacts with per-contact
+// history (shear force, rolling and twisting rotation), under the contact law the case
+// names (contact_law.hpp: the paper's linear spring or Hertz–Mindlin), Newton–Euler
+// integration with an orientation quaternion. Each sphere computes all of its own contacts and writes
 // only its own force, torque and history row; the pair terms are evaluated in a
 // canonical order (lower id first) and negated on the other side, so both sides agree
 // bit for bit and results do not depend on the thread count.
 //
-// Neighbour list with a skin: each sphere lists the spheres within r_i + r_j + skin (and
-// its bonded partners). A step has two passes: each pair is evaluated once, by its A
+// Neighbour list with a skin (neighbour/pair_list.hpp): each sphere lists the spheres
+// within r_i + r_j + skin (and its bonded partners). A step has two passes: each pair is evaluated once, by its A
 // sphere (lower id), which updates the pair's history in its own slot and writes the
 // pair's forces beside it; then each sphere sums the forces of its listed pairs in list
 // order, its A-side pairs with their sign and its B-side ones through the slot index of
@@ -149,8 +150,6 @@ public:
   // True when every sphere position is finite (a reduction; nothing is copied to the host).
   [[nodiscard]] bool finite();
   DemView view();
-
-  // Timing of the steps so far, seconds: sort (neighbour search + reordering), everything.
 
 private:
   enum FieldUse : unsigned { kSorted = 1 };
