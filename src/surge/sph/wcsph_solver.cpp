@@ -228,7 +228,7 @@ void WcsphSolver::sort_and_rates() {
 void WcsphSolver::rates() {
   const auto p = store_.view();
   const auto g = grid_.view(p.pos);
-  {
+  if (boundary_->prepares()) {
     const auto t = par::timed(par::Phase::Boundary);
     boundary_->prepare(cfg_.prm, g, p);
   }

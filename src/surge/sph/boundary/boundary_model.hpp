@@ -21,6 +21,9 @@ public:
   // Before the EOS and the rates: the boundary particles' densities at the current
   // positions (each boundary particle writes only its own).
   virtual void prepare(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) = 0;
+  // Whether prepare does anything (the solver then skips its timed phase: two events a
+  // step on a GPU).
+  [[nodiscard]] virtual bool prepares() const { return true; }
   // How much further than one kernel support a boundary particle's density reads
   // (a distributed run's halo grows by it).
   [[nodiscard]] virtual double extra_reach() const = 0;

@@ -10,6 +10,7 @@ namespace {
 class DynamicBoundary final : public BoundaryModel {
 public:
   void prepare(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&) override {}
+  [[nodiscard]] bool prepares() const override { return false; }
   [[nodiscard]] double extra_reach() const override { return 0; }
   [[nodiscard]] Vec3* ghost_offsets() override { return nullptr; }
   [[nodiscard]] std::size_t bytes() const override { return 0; }
