@@ -1,6 +1,8 @@
 #include "surge/dem/contact_hertz_mindlin.hpp"
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 
 namespace surge::dem {
 
@@ -33,6 +35,11 @@ double hertz_restitution(double alpha) { return rebound(alpha); }
 
 double hertz_damping_factor(double restitution) {
   if (restitution >= 1) return 0;
+  // Solved once per value (about 0.1 s each; a case builds its solver more than once).
+  static std::mutex m;
+  static std::map<double, double> solved;
+  const std::lock_guard lock(m);
+  if (const auto it = solved.find(restitution); it != solved.end()) return it->second;
   // The rebound falls as alpha rises; bisection to 1e-6 of the restitution.
   double lo = 0, hi = 1;
   while (rebound(hi) > restitution) hi *= 2;
@@ -40,7 +47,7 @@ double hertz_damping_factor(double restitution) {
     const double mid = (lo + hi) / 2;
     (rebound(mid) > restitution ? lo : hi) = mid;
   }
-  return (lo + hi) / 2;
+  return solved[restitution] = (lo + hi) / 2;
 }
 
 } // namespace surge::dem
