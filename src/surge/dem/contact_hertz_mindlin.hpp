@@ -61,14 +61,17 @@ struct HertzMindlin {
   }
   [[nodiscard]] SURGE_HD static Real inv_estar(const Material& m) { return (1 - m.nu * m.nu) / m.young; }
   [[nodiscard]] SURGE_HD static Real inv_gstar(const Material& m) { return 2 * (2 - m.nu) * (1 + m.nu) / m.young; }
-  [[nodiscard]] SURGE_HD static Pair pair(const Material& a, const Material& b, Real ra, Real rb, Real mstar) {
-    return make(1 / (inv_estar(a) + inv_estar(b)), 1 / (inv_gstar(a) + inv_gstar(b)), ra * rb / (ra + rb), mstar,
+  // Two materials meeting with effective radius R* and mass m*.
+  [[nodiscard]] SURGE_HD static Pair mixed(const Material& a, const Material& b, Real rstar, Real mstar) {
+    return make(1 / (inv_estar(a) + inv_estar(b)), 1 / (inv_gstar(a) + inv_gstar(b)), rstar, mstar,
                 a.damping > b.damping ? a.damping : b.damping);
+  }
+  [[nodiscard]] SURGE_HD static Pair pair(const Material& a, const Material& b, Real ra, Real rb, Real mstar) {
+    return mixed(a, b, ra * rb / (ra + rb), mstar);
   }
   // A wall: a flat surface (infinite radius) of infinite mass.
   [[nodiscard]] SURGE_HD static Pair wall(const Material& sphere, const Material& w, Real r, Real m) {
-    return make(1 / (inv_estar(sphere) + inv_estar(w)), 1 / (inv_gstar(sphere) + inv_gstar(w)), r, m,
-                sphere.damping > w.damping ? sphere.damping : w.damping);
+    return mixed(sphere, w, r, m);
   }
   [[nodiscard]] SURGE_HD static Real normal_force(const Pair& p, Real un, Real dun, bool bonded) {
     (void)bonded; // never bonded (unsuitable)

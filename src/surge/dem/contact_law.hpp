@@ -78,6 +78,12 @@ std::vector<std::string> law_names(LawList<L...> /*list*/) {
   return {L::name...};
 }
 inline std::vector<std::string> contact_law_names() { return law_names(ContactLaws{}); }
+// Why law `law` refuses material m (nullptr: it takes it), with the key at fault.
+inline const char* unsuitable_material(int law, const Material& m, const char** key) {
+  const char* why = nullptr;
+  with_contact_law(law, [&](auto l) { why = decltype(l)::unsuitable(m, key); });
+  return why;
+}
 inline int contact_law_index(const std::string& name) {
   const auto names = contact_law_names();
   for (std::size_t k = 0; k < names.size(); ++k)

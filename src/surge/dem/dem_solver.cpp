@@ -464,15 +464,12 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
   if (materials_host_.empty()) throw std::invalid_argument("DEM needs at least one material");
   if (law_index_ < 0 || law_index_ >= static_cast<int>(contact_law_names().size()))
     throw std::invalid_argument("unknown DEM contact law");
-  with_contact_law(law_index_, [&](auto law) {
-    using L = decltype(law);
-    for (auto& m : materials_host_) {
-      const char* key = "";
-      if (const char* why = L::unsuitable(m, &key))
-        throw std::invalid_argument(std::string("material ") + key + " " + why);
-      m.damping = L::damping(m.restitution);
-    }
-  });
+  for (auto& m : materials_host_) {
+    const char* key = "";
+    if (const char* why = unsuitable_material(law_index_, m, &key))
+      throw std::invalid_argument(std::string("material ") + key + " " + why);
+    with_contact_law(law_index_, [&](auto law) { m.damping = decltype(law)::damping(m.restitution); });
+  }
   par::upload(materials_, materials_host_);
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());

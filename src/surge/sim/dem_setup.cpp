@@ -45,13 +45,11 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
 void check_contact_law(const Case& c, DemSetup& s) {
   s.contact_law = dem::contact_law_index(c.dem.contact);
   if (s.contact_law < 0) throw InputError(c.source, 0, "dem.contact", "unknown contact law '" + c.dem.contact + "'");
-  dem::with_contact_law(s.contact_law, [&](auto law) {
-    for (std::size_t k = 0; k < s.materials.size(); ++k) {
-      const char* key = "";
-      if (const char* why = decltype(law)::unsuitable(s.materials[k], &key))
-        throw InputError(c.source, c.dem.materials[k].line, "dem.materials." + std::to_string(k) + "." + key, why);
-    }
-  });
+  for (std::size_t k = 0; k < s.materials.size(); ++k) {
+    const char* key = "";
+    if (const char* why = dem::unsuitable_material(s.contact_law, s.materials[k], &key))
+      throw InputError(c.source, c.dem.materials[k].line, "dem.materials." + std::to_string(k) + "." + key, why);
+  }
 }
 } // namespace
 
