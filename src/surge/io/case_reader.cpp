@@ -440,6 +440,19 @@ void parse_component(const Reader& r, const YAML::Node& g, const std::string& pa
   }
 }
 
+// The gauge types as the case file names them, in GaugeType's order (read and written).
+constexpr const char* gauge_type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall"};
+
+GaugeType parse_gauge_type(const Reader& r, const YAML::Node& g, const std::string& path) {
+  const auto type = r.require<std::string>(g, path, "type");
+  std::string known;
+  for (std::size_t k = 0; k < std::size(gauge_type_names); ++k) {
+    if (type == gauge_type_names[k]) return static_cast<GaugeType>(k);
+    known += (k == 0 ? "" : (k + 1 == std::size(gauge_type_names) ? " or " : ", ")) + std::string(gauge_type_names[k]);
+  }
+  r.fail(g["type"], path + ".type", "unknown gauge type '" + type + "'; use " + known);
+}
+
 GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& path, const Case& c,
                       std::set<std::string>& names) {
   r.check_keys(g, path, keys_under("gauges[]"));
@@ -450,31 +463,30 @@ GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& p
     r.fail(g["name"], path + ".name", "gauge names must be non-empty, not 'time', without commas or quotes");
   if (!names.insert(gs.name).second) r.fail(g["name"], path + ".name", "duplicate gauge name");
   read_fields(r, g, path, gauge_fields(), gs);
-  const auto type = r.require<std::string>(g, path, "type");
-  if (type == "height") {
-    gs.type = GaugeType::Height;
+  gs.type = parse_gauge_type(r, g, path);
+  switch (gs.type) {
+  case GaugeType::Height:
     gs.x = r.require<double>(g, path, "x");
     gs.y = r.require<double>(g, path, "y");
     if (!c.domain.contains({gs.x, gs.y, c.domain.min.z})) r.fail(g, path, "height gauge lies outside the domain");
-  } else if (type == "pressure" || type == "velocity") {
-    gs.type = type == "pressure" ? GaugeType::Pressure : GaugeType::Velocity;
+    break;
+  case GaugeType::Pressure:
+  case GaugeType::Velocity:
     gs.at = r.require<Vec3d>(g, path, "at");
     if (!c.domain.contains(gs.at)) r.fail(g["at"], path + ".at", "gauge point lies outside the domain");
-  } else if (type == "force") {
-    gs.type = GaugeType::Force;
+    break;
+  case GaugeType::Force:
     gs.wall = r.require<std::string>(g, path, "wall");
     if (std::none_of(c.walls.begin(), c.walls.end(), [&](const WallSpec& w) { return w.name == gs.wall; }))
       r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
-  } else if (type == "sphere") {
-    gs.type = GaugeType::Sphere;
+    break;
+  case GaugeType::Sphere:
     gs.sphere = r.require<int>(g, path, "sphere");
     if (gs.sphere < 0) r.fail(g["sphere"], path + ".sphere", "must not be negative");
-  } else if (type == "dem_wall") {
-    gs.type = GaugeType::DemWall;
+    break;
+  case GaugeType::DemWall:
     gs.wall = r.require<std::string>(g, path, "wall"); // checked once the DEM walls are read
-  } else {
-    r.fail(g["type"], path + ".type",
-           "unknown gauge type '" + type + "'; use height, pressure, velocity, force, sphere or dem_wall");
+    break;
   }
   parse_component(r, g, path, gs);
   return gs;
@@ -676,9 +688,8 @@ void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
 
 // Each gauge with the keys of its type only.
 void write_gauge(YAML::Emitter& e, const GaugeSpec& g) {
-  static const char* const type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall"};
   e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << g.name << YAML::Key << "type" << YAML::Value
-    << type_names[static_cast<int>(g.type)];
+    << gauge_type_names[static_cast<int>(g.type)];
   switch (g.type) {
   case GaugeType::Height:
     e << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y" << YAML::Value << g.y << YAML::Key << "surface"
