@@ -6,6 +6,18 @@
 
 namespace surge::test {
 
+// The tests' granular material: rho = 2500 kg/m^3, friction angle 30 degrees, the given
+// Young's modulus, nu and restitution.
+inline dem::Material grains(Real young, Real nu, Real e) {
+  dem::Material m;
+  m.density = 2500;
+  m.young = young;
+  m.nu = nu;
+  m.tan_phi = std::tan(Real(30 * dem::pi / 180));
+  m.restitution = e;
+  return m;
+}
+
 struct Impact {
   double duration = 0, restitution = 0, momentum_error = 0, max_overlap = 0;
 };

@@ -4,6 +4,7 @@
 // throughout (Maw et al.'s gross-sliding regime), a sphere that cannot roll
 // sticking on an incline below tan(phi) = mu and sliding above it at g (sin - mu cos);
 // the case key, its choices and the materials the law refuses.
+#include "dem_closed_form.hpp"
 #include "test_helpers.hpp"
 
 #include "surge/core/error.hpp"
@@ -26,15 +27,7 @@ namespace {
 const int hertz = contact_law_index("hertz_mindlin");
 const Vec3 lo{-1, -1, -1}, hi{1, 1, 1};
 
-Material glassy(Real e) {
-  Material m;
-  m.density = 2500;
-  m.young = 1e7f;
-  m.nu = 0.3f;
-  m.tan_phi = std::tan(Real(30 * pi / 180));
-  m.restitution = e;
-  return m;
-}
+Material glassy(Real e) { return test::grains(1e7f, 0.3f, e); }
 
 // Hertz's elastic impact of two bodies (reduced mass m*, radius R*, modulus E*) at
 // approach speed v: peak overlap (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) and duration

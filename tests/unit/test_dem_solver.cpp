@@ -15,15 +15,7 @@ using namespace surge::dem;
 
 namespace {
 const Vec3 lo{-1, -1, -1}, hi{1, 1, 1};
-Material grains(Real e) {
-  Material m;
-  m.density = 2500;
-  m.young = 1e6f;
-  m.nu = 0.2f;
-  m.tan_phi = std::tan(Real(30 * pi / 180));
-  m.restitution = e;
-  return m;
-}
+Material grains(Real e) { return test::grains(1e6f, 0.2f, e); }
 } // namespace
 
 TEST(DemSolver, HeadOnImpactMatchesTheClippedOscillator) {
