@@ -279,7 +279,7 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         const Material mi = mats[v.material[i]];
         neighbour::for_each_listed<max_contacts>(v.list, v.id, i,
                                                  [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
-                                                   if (at == no_partner) return; // the partner's list was full
+                                                   if (at == neighbour::no_pair) return; // the partner's list was full
                                                    const PairForce& pf = v.pair[at];
                                                    if (!(pf.flags & 1U)) return;
                                                    ++used;
@@ -525,8 +525,8 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   par::upload(material_, mat);
   par::upload(fixed_, fixed);
   par::upload(id_, id);
-  par::fill(nbr_, no_partner);
-  par::fill(entry_, no_partner);
+  par::fill(nbr_, neighbour::no_pair);
+  par::fill(entry_, neighbour::no_pair);
   hist_.resize(0);
   n_pairs_ = 0;
   list_valid_ = false;
