@@ -5,6 +5,9 @@
 #include "phase_report.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/sph/wcsph_solver.hpp"
+#if defined(SURGE_SIMD)
+#include "surge/sph/wcsph_rates_simd.hpp"
+#endif
 
 #include <chrono>
 #include <cstdio>
@@ -37,17 +40,22 @@ int main(int argc, char** argv) {
   surge::par::synchronize();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::string phases = surge::bench::phase_breakdown(std::max(1L, steps / 4), [&] { solver->step(1.0); });
+#if defined(SURGE_SIMD)
+  const char* pair_loop = surge::sph::batched_rates_name(); // avx2, sse2 or off (the scalar loop)
+#else
+  const char* pair_loop = "scalar";
+#endif
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   const double rss = static_cast<double>(u.ru_maxrss) * 1024.0;
   std::printf("{\"case\": \"%s\", \"threads\": %d, \"steps\": %ld, \"fluid\": %zu, \"particles\": %zu, "
               "\"fluid_steps_per_s\": %.4g, \"particle_steps_per_s\": %.4g, "
               "\"solver_bytes_per_particle\": %.1f, \"rss_bytes_per_particle\": %.1f, \"seconds\": %.3f, \"backend\": "
-              "\"%s\", \"phases_ms_share\": %s}\n",
+              "\"%s\", \"pair_loop\": \"%s\", \"phases_ms_share\": %s}\n",
               c.name.c_str(), surge::par::threads(), steps, n_fluid, n_all,
               static_cast<double>(n_fluid) * static_cast<double>(steps) / wall,
               static_cast<double>(n_all) * static_cast<double>(steps) / wall,
               static_cast<double>(solver->bytes()) / static_cast<double>(n_all), rss / static_cast<double>(n_all), wall,
-              surge::par::backend_name(), phases.c_str());
+              surge::par::backend_name(), pair_loop, phases.c_str());
   return 0;
 }

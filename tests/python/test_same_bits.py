@@ -6,7 +6,11 @@ should not change results. A change that changes results on purpose records them
 
     python3 tests/python/test_same_bits.py build/cpu-ci/src/surge/surge /tmp/bits cases --record
 
-and says so in its commit. The runs are short (seconds each): they check bits, not physics."""
+and says so in its commit. The runs are short (seconds each): they check bits, not physics.
+
+The batched (SIMD) pair loop sums in another order than the scalar one: a build with it
+compares against same_bits_simd.json (`--reference same_bits_simd.json`), a build without
+it (SURGE_SIMD=OFF) against same_bits.json."""
 import hashlib
 import json
 import os
@@ -16,7 +20,8 @@ import sys
 
 SURGE, WORK, CASES = sys.argv[1], sys.argv[2], sys.argv[3]
 RECORD = "--record" in sys.argv[4:]
-REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", "same_bits.json")
+NAME = sys.argv[sys.argv.index("--reference") + 1] if "--reference" in sys.argv else "same_bits.json"
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reference", NAME)
 
 # name: (case file, --set overrides); every run writes its outputs, a final checkpoint and gauges.
 RUNS = {

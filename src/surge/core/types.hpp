@@ -5,8 +5,12 @@
 
 #if defined(__CUDACC__)
 #define SURGE_HD __host__ __device__
+#define SURGE_INLINE __forceinline__
 #else
 #define SURGE_HD
+// Formulas that SIMD code instantiates on vector types must be inlined into it: a copy of
+// their own would be compiled for the baseline instruction set (sph/wcsph_rates_simd.cpp).
+#define SURGE_INLINE [[gnu::always_inline]] inline
 #endif
 
 namespace surge {

@@ -24,12 +24,14 @@ struct WendlandC2 {
     const Real t = 1 - q / 2;
     return ad * t * t * t * t * (2 * q + 1);
   }
-  // (1/r) dW/dr, so that grad_i W_ij = r_ij * f(r); finite at r -> 0.
-  [[nodiscard]] SURGE_HD Real dw_over_r(Real r) const {
-    const Real q = r * h_inv;
-    if (q >= 2) return 0;
-    const Real t = 1 - q / 2;
-    return -5 * ad * h2_inv * t * t * t;
+  // (1/r) dW/dr, so that grad_i W_ij = r_ij * f(r); finite at r -> 0. T is Real, or a
+  // SIMD vector of Reals (one r per lane; the pair loop of wcsph_rates_batched.inc).
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE T dw_over_r(T r) const {
+    const T q = r * h_inv;
+    const T t = 1 - q / 2;
+    const T f = -5 * ad * h2_inv * t * t * t;
+    return q >= 2 ? T{} : f;
   }
 };
 

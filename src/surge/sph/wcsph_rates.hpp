@@ -19,6 +19,8 @@
 #include "surge/sph/eos_tait.hpp"
 #include "surge/sph/kernel_wendland_c2.hpp"
 
+#include <type_traits>
+
 namespace surge::sph {
 
 struct WcsphParams {
@@ -43,65 +45,121 @@ struct Rates {
   WallPlane wall; // fluid, with no penetration: the wall face or particle it would reach first (no_penetration.hpp)
 };
 
-// `gh`: with the no-penetration condition, the wall particles' ghost offsets and reach,
-// from which each fluid particle finds the wall face or particle it would reach first.
-[[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
-                                                const particles::ParticleView& p, int i, const WallHoldView& gh = {}) {
+// The formulas below are written once for T = Real (one pair at a time: the scalar and
+// CUDA paths) and for T = a SIMD vector of Reals (a batch of pairs, one per lane:
+// wcsph_rates_batched.inc). `m ? a : b` and the arithmetic operators work lane by lane on
+// GCC's vector types; `splat` makes a T of a Real.
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE T splat(Real x) {
+  return T{} + x;
+}
+
+// The sums particle i accumulates over its pairs (each pair's term as in the header).
+template <class T>
+struct PairSums {
+  T drho{}, diff{}, vsig{};
+  Vec3T<T> acc{};
+};
+
+// What the pair terms read of one particle of a pair.
+template <class T>
+struct PairSide {
+  Vec3T<T> vel;
+  T rho, press;
+};
+
+// rho^H_ji for Fourtakas's diffusion (0 for Molteni's): the EOS's inverse at the hydrostatic
+// pressure difference rho0 g.r_ji. std::pow has no vector form: lane by lane for a batch.
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE T hydrostatic_density(const WcsphParams& prm, const Vec3T<T>& rij) {
+  if (!prm.fourtakas) return T{};
+  if constexpr (std::is_same_v<T, Real>) {
+    return prm.eos.density(-prm.eos.rho0 * dot(prm.gravity, rij)) - prm.eos.rho0;
+  } else {
+    T out{};
+    for (int k = 0; k < static_cast<int>(sizeof(T) / sizeof(Real)); ++k)
+      out[k] = hydrostatic_density<Real>(prm, Vec3{rij.x[k], rij.y[k], rij.z[k]});
+    return out;
+  }
+}
+
+// Adds the terms of the pairs (i, j) to s: rij = x_i - x_j, r2 = |rij|^2, r = |rij|;
+// `diffuse`: both are fluid (density diffusion acts between fluid particles only).
+template <class T, class Mask>
+SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>& rij, T r2, T r, const PairSide<T>& a,
+                                          const PairSide<T>& b, Mask diffuse, PairSums<T>& s) {
   const Real h = prm.kernel.h;
   const Real eta2 = Real(0.01) * h * h;
+  const Vec3T<T> grad = rij * prm.kernel.dw_over_r(r);
+  const Vec3T<T> vij = a.vel - b.vel;
+  const T vr = dot(vij, rij);
+  s.drho += prm.mass * dot(vij, grad);
+  const T inv_r2e = 1 / (r2 + eta2);
+  const T inv_rho_sum = 1 / (a.rho + b.rho);
+  const T mu = h * vr * inv_r2e;
+  const T amu = mu < 0 ? -mu : mu;
+  s.vsig = amu > s.vsig ? amu : s.vsig;
+  const T rho_h = hydrostatic_density(prm, rij);
+  const T diff = prm.mass * 4 * inv_rho_sum * (b.rho - a.rho - rho_h) * (-dot(rij, grad)) * inv_r2e;
+  if constexpr (std::is_same_v<T, Real>) {
+    if (diffuse) s.diff += diff;
+  } else {
+    s.diff += diffuse ? diff : T{}; // adding 0 leaves a sum as it was
+  }
+  T coef = (a.press + b.press) / (a.rho * b.rho);
+  const T visc = prm.alpha * prm.eos.c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
+  coef = vr < 0 ? coef - visc : coef;
+  s.acc -= grad * (prm.mass * coef);
+}
+
+// The rates of particle i from its sums.
+[[nodiscard]] SURGE_HD inline Rates finish_rates(const WcsphParams& prm, bool fluid_i, Real drho, Real diff, Real vsig,
+                                                 const Vec3& acc, const WallPlane& wall) {
+  Rates out;
+  out.drho = drho + prm.delta * prm.kernel.h * prm.eos.c0 * diff;
+  out.acc = fluid_i ? acc + prm.gravity : acc;
+  out.vsig = vsig;
+  out.wall = wall;
+  return out;
+}
+
+// Offers the faces and the sphere of wall particle j (at x_i - rij, |rij| = r) to the
+// fluid particle i's choice of the wall it would reach first (no_penetration.hpp).
+SURGE_HD inline void consider_wall(const WallHoldView& gh, const particles::ParticleView& p, int j, const Vec3& xi,
+                                   const Vec3& vi, const Vec3& rij, Real r, Real keep_off, FirstContact& contact) {
+  const std::uint32_t b = p.id[j] - gh.first_id;
+  const WallReach reach = gh.reach[b];
+  for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face,
+                     [&](const WallPlane& w) { contact.consider(w, xi, vi, keep_off); });
+  if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
+}
+
+// `gh`: with the no-penetration condition, the wall particles' ghost offsets and reach,
+// from which each fluid particle finds the wall face or particle it would reach first.
+// One pair at a time; the CPU build runs wcsph_rates_batched.inc, the same sums 8 pairs at a time.
+[[nodiscard]] SURGE_HD inline Rates wcsph_rates(const WcsphParams& prm, const neighbour::GridView& g,
+                                                const particles::ParticleView& p, int i, const WallHoldView& gh = {}) {
   const Real r2max = prm.kernel.support() * prm.kernel.support();
   const Vec3 xi = p.pos[i];
-  const Vec3 vi = p.vel[i];
-  const Real rhoi = p.rho[i];
-  const Real pi = p.press[i];
-  const bool fluid_i = p.kind[i] == static_cast<std::uint8_t>(Kind::Fluid);
-  const Real c0 = prm.eos.c0;
-  Real drho = 0, diff = 0, vsig = 0;
-  Vec3 acc{};
+  const PairSide<Real> a{p.vel[i], p.rho[i], p.press[i]};
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
+  const bool fluid_i = p.kind[i] == fluid;
+  PairSums<Real> s;
   FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
-  const auto wall = static_cast<std::uint8_t>(Kind::Wall);
-  // One pair term; boundary particles (fluid_i false) only ever see fluid j.
+  // Boundary particles (fluid_i false) only ever see fluid j.
   auto pair = [&](int j, const Vec3& rij, Real r2) {
     if (j == i) return;
-    const bool fluid_j = p.kind[j] == static_cast<std::uint8_t>(Kind::Fluid);
     const Real r = std::sqrt(r2);
-    const Vec3 grad = rij * prm.kernel.dw_over_r(r);
-    const Vec3 vij = vi - p.vel[j];
-    const Real rhoj = p.rho[j];
-    const Real vr = dot(vij, rij);
-    drho += prm.mass * dot(vij, grad);
-    const Real inv_r2e = 1 / (r2 + eta2);
-    const Real inv_rho_sum = 1 / (rhoi + rhoj);
-    const Real mu = h * vr * inv_r2e;
-    const Real amu = mu < 0 ? -mu : mu;
-    vsig = amu > vsig ? amu : vsig;
-    if (fluid_i && gh.hold && p.kind[j] == wall) {
-      const std::uint32_t b = p.id[j] - gh.first_id;
-      const WallReach reach = gh.reach[b];
-      for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face,
-                         [&](const WallPlane& w) { contact.consider(w, xi, vi, keep_off); });
-      if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
-    }
-    if (fluid_i && fluid_j) {
-      // rho^H_ji from the EOS's inverse at the hydrostatic pressure difference rho0 g.r_ji.
-      const Real rho_h = prm.fourtakas ? prm.eos.density(-prm.eos.rho0 * dot(prm.gravity, rij)) - prm.eos.rho0 : 0;
-      diff += prm.mass * 4 * inv_rho_sum * (rhoj - rhoi - rho_h) * (-dot(rij, grad)) * inv_r2e;
-    }
-    Real coef = (pi + p.press[j]) / (rhoi * rhoj);
-    if (vr < 0) coef -= prm.alpha * c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
-    acc -= grad * (prm.mass * coef);
+    if (fluid_i && gh.hold && p.kind[j] == wall) consider_wall(gh, p, j, xi, a.vel, rij, r, keep_off, contact);
+    add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid,
+                   s);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
-  Rates out;
-  out.drho = drho + prm.delta * h * c0 * diff;
-  out.acc = fluid_i ? acc + prm.gravity : acc;
-  out.vsig = vsig;
-  out.wall = contact.plane;
-  return out;
+  return finish_rates(prm, fluid_i, s.drho, s.diff, s.vsig, s.acc, contact.plane);
 }
 
 } // namespace surge::sph

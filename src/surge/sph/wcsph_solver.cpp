@@ -1,4 +1,7 @@
 #include "surge/sph/wcsph_solver.hpp"
+#if defined(SURGE_SIMD)
+#include "surge/sph/wcsph_rates_simd.hpp"
+#endif
 
 #include <cmath>
 #include <limits>
@@ -9,20 +12,28 @@ namespace detail {
 // The loops of one SPH step, as free functions: nvcc's extended lambdas may not
 // live in private member functions.
 
+SURGE_HD inline void store_rates(const particles::ParticleView& p, WallPlane* faces, int i, const Rates& r) {
+  p.acc[i] = r.acc;
+  p.drho[i] = r.drho;
+  p.vsig[i] = r.vsig;
+  if (faces) faces[i] = r.wall;
+}
+
 // EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
-// condition (`faces` not null) the wall plane each fluid particle would reach first.
+// condition (`faces` not null) the wall plane each fluid particle would reach first. On
+// CPUs the batched pair loop (wcsph_rates_simd.hpp) unless built or asked without it.
 void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbour::GridView& g,
                    const particles::ParticleView& p, WallPlane* faces) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
+#if defined(SURGE_SIMD)
+  if (const RatesFn batched = batched_rates()) {
+    par::parallel_for_uneven(p.n, [=](int i) { store_rates(p, faces, i, batched(prm, g, p, i, gh)); });
+    return;
+  }
+#endif
   par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) {
-        const Rates r = wcsph_rates(prm, g, p, i, gh);
-        p.acc[i] = r.acc;
-        p.drho[i] = r.drho;
-        p.vsig[i] = r.vsig;
-        if (faces) faces[i] = r.wall;
-      });
+      p.n, SURGE_LAMBDA(int i) { store_rates(p, faces, i, wcsph_rates(prm, g, p, i, gh)); });
 }
 
 // min over owned fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL

@@ -63,6 +63,8 @@ public:
   }
   [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
   particles::ParticleView view() { return store_.view(); }
+  // What the rates kernel reads of the walls for the no-penetration condition.
+  [[nodiscard]] WallHoldView hold_view() const { return hold_.view(); }
   void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
   // Continues from a checkpoint: particles with their integration history, and the step count.
   void restore(const particles::HostParticles& h, long steps);

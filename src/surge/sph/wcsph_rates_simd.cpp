@@ -1,0 +1,58 @@
+#include "surge/sph/wcsph_rates_simd.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <immintrin.h>
+
+// Each instruction set's copy lives in its own namespace, compiled under its own target
+// options; everything it calls from the headers above is inlined into it (SURGE_INLINE),
+// so no function compiled for AVX2 can be picked by the linker for code that runs on a CPU
+// without it.
+namespace surge::sph {
+
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+namespace avx2 {
+#define SURGE_BATCH_AVX2 1
+#include "surge/sph/wcsph_rates_batched.inc"
+#undef SURGE_BATCH_AVX2
+} // namespace avx2
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+
+namespace sse2 {
+#include "surge/sph/wcsph_rates_batched.inc"
+} // namespace sse2
+
+RatesFn batched_rates(const char* isa) {
+  if (std::strcmp(isa, "avx2") == 0) return __builtin_cpu_supports("avx2") ? &avx2::rates : nullptr;
+  if (std::strcmp(isa, "sse2") == 0) return &sse2::rates;
+  return nullptr;
+}
+
+const char* batched_rates_name() {
+  static const char* name = [] {
+    const bool avx2_here = __builtin_cpu_supports("avx2") != 0;
+    const char* env = std::getenv("SURGE_SIMD");
+    if (env && std::strcmp(env, "off") == 0) return "off";
+    if (env && std::strcmp(env, "sse2") == 0) return "sse2";
+    return avx2_here ? "avx2" : "sse2"; // unset, "avx2" or anything else: the widest there is
+  }();
+  return name;
+}
+
+RatesFn batched_rates() {
+  static const RatesFn f = batched_rates(batched_rates_name());
+  return f;
+}
+
+} // namespace surge::sph

@@ -1,0 +1,22 @@
+// The CPU's pair loop, 8 pairs at a time (wcsph_rates_batched.inc), for the instruction set
+// this CPU has: chosen once at run time, so that one binary uses AVX2 where it exists and
+// SSE2 (every x86-64 CPU) elsewhere. Both give the same bits (no fused multiply-adds).
+// Built where SURGE_SIMD is defined (GCC or Clang on x86-64, float, not CUDA).
+#pragma once
+#include "surge/sph/wcsph_rates.hpp"
+
+namespace surge::sph {
+
+using RatesFn = Rates (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&, int,
+                          const WallHoldView&);
+
+// The batched rates for one instruction set: "avx2" or "sse2"; null for a set this CPU
+// lacks or an unknown name.
+RatesFn batched_rates(const char* isa);
+// What the solver runs: the widest set the CPU has, unless the environment variable
+// SURGE_SIMD asks for "sse2" or for the scalar loop ("off": null).
+RatesFn batched_rates();
+// The name of what batched_rates() runs ("avx2", "sse2" or "off"), for benchmark reports.
+const char* batched_rates_name();
+
+} // namespace surge::sph
