@@ -12,6 +12,7 @@
 // without it.
 namespace surge::sph {
 
+// Built with GCC only (CMakeLists.txt); the Clang branch lets clang-tidy read the file.
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
 #else
