@@ -80,9 +80,7 @@ std::array<int, 8> compare_rates(sph::WcsphSolver& s, const std::string& what) {
 
 sph::WcsphSolver advanced(const std::string& text, int steps) {
   const Case c = io::read_case_text(text, "simd.yaml");
-  static sph::InitialState init; // the solver keeps no reference to it, but keep it alive anyway
-  init = sph::build_initial_state(c);
-  sph::WcsphSolver s(sph::solver_config(c), init);
+  sph::WcsphSolver s(sph::solver_config(c), sph::build_initial_state(c));
   for (int k = 0; k < steps; ++k) s.step(1.0);
   return s;
 }

@@ -6,11 +6,15 @@
 #if defined(__CUDACC__)
 #define SURGE_HD __host__ __device__
 #define SURGE_INLINE __forceinline__
+#define SURGE_NOINLINE __noinline__
 #else
 #define SURGE_HD
 // Formulas that SIMD code instantiates on vector types must be inlined into it: a copy of
 // their own would be compiled for the baseline instruction set (sph/wcsph_rates_simd.cpp).
 #define SURGE_INLINE [[gnu::always_inline]] inline
+// Rare branches of hot loops kept out of them, so that the loop body stays small enough
+// for the compiler to inline it into the neighbour scan.
+#define SURGE_NOINLINE [[gnu::noinline]]
 #endif
 
 namespace surge {

@@ -67,12 +67,18 @@ SURGE_HD inline void scan_range(const GridView& g, const Vec3& x, Real r2max, st
   }
 }
 
+// Calls range(begin, end) for the particles of each row of the stencil around x (every
+// class): contiguous index ranges, in the order of the neighbour loops.
+template <class R>
+SURGE_HD inline void for_each_stencil_range(const GridView& g, const Vec3& x, R&& range) {
+  for_each_stencil_row(g.spec, x, [&](int c0, int c1) { range(g.cell_start[2 * c0], g.cell_start[2 * (c1 + 1)]); });
+}
+
 // Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
 // scanning the stencil around x as contiguous rows. Includes x's own particle.
 template <class F>
 SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
-  for_each_stencil_row(
-      g.spec, x, [&](int c0, int c1) { scan_range(g, x, r2max, g.cell_start[2 * c0], g.cell_start[2 * (c1 + 1)], f); });
+  for_each_stencil_range(g, x, [&](std::uint32_t begin, std::uint32_t end) { scan_range(g, x, r2max, begin, end, f); });
 }
 
 // Like for_each_neighbour, over class-0 (fluid) particles only: what boundary

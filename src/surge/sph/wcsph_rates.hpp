@@ -99,12 +99,14 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   const T mu = h * vr * inv_r2e;
   const T amu = mu < 0 ? -mu : mu;
   s.vsig = amu > s.vsig ? amu : s.vsig;
-  const T rho_h = hydrostatic_density(prm, rij);
-  const T diff = prm.mass * 4 * inv_rho_sum * (b.rho - a.rho - rho_h) * (-dot(rij, grad)) * inv_r2e;
+  auto diffusion = [&] {
+    const T rho_h = hydrostatic_density(prm, rij);
+    return prm.mass * 4 * inv_rho_sum * (b.rho - a.rho - rho_h) * (-dot(rij, grad)) * inv_r2e;
+  };
   if constexpr (std::is_same_v<T, Real>) {
-    if (diffuse) s.diff += diff;
+    if (diffuse) s.diff += diffusion(); // one pair: skipped where it does not act (pow for Fourtakas)
   } else {
-    s.diff += diffuse ? diff : T{}; // adding 0 leaves a sum as it was
+    s.diff += diffuse ? diffusion() : T{}; // a batch: every lane computed, 0 added where it does not act
   }
   T coef = (a.press + b.press) / (a.rho * b.rho);
   const T visc = prm.alpha * prm.eos.c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
@@ -113,20 +115,21 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
 }
 
 // The rates of particle i from its sums.
-[[nodiscard]] SURGE_HD inline Rates finish_rates(const WcsphParams& prm, bool fluid_i, Real drho, Real diff, Real vsig,
-                                                 const Vec3& acc, const WallPlane& wall) {
+[[nodiscard]] SURGE_HD inline Rates finish_rates(const WcsphParams& prm, bool fluid_i, const PairSums<Real>& s,
+                                                 const WallPlane& wall) {
   Rates out;
-  out.drho = drho + prm.delta * prm.kernel.h * prm.eos.c0 * diff;
-  out.acc = fluid_i ? acc + prm.gravity : acc;
-  out.vsig = vsig;
+  out.drho = s.drho + prm.delta * prm.kernel.h * prm.eos.c0 * s.diff;
+  out.acc = fluid_i ? s.acc + prm.gravity : s.acc;
+  out.vsig = s.vsig;
   out.wall = wall;
   return out;
 }
 
 // Offers the faces and the sphere of wall particle j (at x_i - rij, |rij| = r) to the
 // fluid particle i's choice of the wall it would reach first (no_penetration.hpp).
-SURGE_HD inline void consider_wall(const WallHoldView& gh, const particles::ParticleView& p, int j, const Vec3& xi,
-                                   const Vec3& vi, const Vec3& rij, Real r, Real keep_off, FirstContact& contact) {
+SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const particles::ParticleView& p, int j,
+                                                  const Vec3& xi, const Vec3& vi, const Vec3& rij, Real r,
+                                                  Real keep_off, FirstContact& contact) {
   const std::uint32_t b = p.id[j] - gh.first_id;
   const WallReach reach = gh.reach[b];
   for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face,
@@ -159,7 +162,7 @@ SURGE_HD inline void consider_wall(const WallHoldView& gh, const particles::Part
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
-  return finish_rates(prm, fluid_i, s.drho, s.diff, s.vsig, s.acc, contact.plane);
+  return finish_rates(prm, fluid_i, s, contact.plane);
 }
 
 } // namespace surge::sph

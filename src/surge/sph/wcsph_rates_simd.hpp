@@ -1,7 +1,7 @@
 // The CPU's pair loop, 8 pairs at a time (wcsph_rates_batched.inc), for the instruction set
 // this CPU has: chosen once at run time, so that one binary uses AVX2 where it exists and
 // SSE2 (every x86-64 CPU) elsewhere. Both give the same bits (no fused multiply-adds).
-// Built where SURGE_SIMD is defined (GCC or Clang on x86-64, float, not CUDA).
+// Built where SURGE_SIMD is defined (GCC on x86-64, float, not CUDA).
 #pragma once
 #include "surge/sph/wcsph_rates.hpp"
 
