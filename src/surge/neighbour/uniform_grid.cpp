@@ -76,6 +76,38 @@ void UniformGrid::build_cell_start(int n) {
       });
 }
 
+namespace detail {
+// out[c] = whether any of in[] within `span` cells of c along `axis` (0, 1, 2) is set.
+void dilate_cells(const GridSpec& s, const std::uint8_t* in, std::uint8_t* out, int axis) {
+  const int m = s.span, nx = s.nx, ny = s.ny, nz = s.nz;
+  par::parallel_for(
+      static_cast<int>(s.cells()), SURGE_LAMBDA(int c) {
+        const int x = c % nx, y = (c / nx) % ny, z = c / (nx * ny);
+        const int at = axis == 0 ? x : (axis == 1 ? y : z);
+        const int n = axis == 0 ? nx : (axis == 1 ? ny : nz);
+        const int stride = axis == 0 ? 1 : (axis == 1 ? nx : nx * ny);
+        std::uint8_t any = 0;
+        for (int d = -m; d <= m; ++d)
+          if (at + d >= 0 && at + d < n) any |= in[c + d * stride];
+        out[c] = any;
+      });
+}
+} // namespace detail
+
+void UniformGrid::mark_wet() {
+  const GridSpec s = spec_;
+  wet_.resize(s.cells());
+  wet_scratch_.resize(s.cells());
+  std::uint8_t* a = wet_.data();
+  std::uint8_t* b = wet_scratch_.data();
+  const std::uint32_t* start = cell_start_.data();
+  par::parallel_for(
+      static_cast<int>(s.cells()), SURGE_LAMBDA(int c) { b[c] = start[2 * c + 1] > start[2 * c] ? 1 : 0; });
+  detail::dilate_cells(s, b, a, 0);
+  detail::dilate_cells(s, a, b, 1);
+  detail::dilate_cells(s, b, a, 2);
+}
+
 int UniformGrid::live_count() const {
   std::vector<std::uint32_t> live;
   par::download_range(live, cell_start_, cell_start_.size() - 1, 1);

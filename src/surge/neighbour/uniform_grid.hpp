@@ -37,6 +37,9 @@ struct GridView {
   GridSpec spec;
   const std::uint32_t* cell_start = nullptr;
   const Vec3* pos = nullptr;
+  // wet[c] != 0 iff the stencil around cell c holds a class-0 (fluid) particle (null: not
+  // known). Boundary particles far from water skip their scan (UniformGrid::mark_wet).
+  const std::uint8_t* wet = nullptr;
 };
 
 // Calls row(first_cell, last_cell) for the (2 span + 1)^2 rows of up to 2 span + 1 cells
@@ -85,6 +88,7 @@ SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r
 // particles need, without scanning the other boundary particles around them.
 template <class F>
 SURGE_HD inline void for_each_fluid_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
+  if (g.wet && !g.wet[g.spec.key(x)]) return; // no fluid in the stencil
   for_each_stencil_row(g.spec, x, [&](int c0, int c1) {
     for (int c = c0; c <= c1; ++c) scan_range(g, x, r2max, g.cell_start[2 * c], g.cell_start[2 * c + 1], f);
   });
@@ -105,20 +109,27 @@ public:
   void sort(const Vec3* pos, const std::uint8_t* cls, int n, const std::uint32_t* id = nullptr);
   // Builds cell_start from the sorted keys (no host synchronisation).
   void build_cell_start(int n);
+  // After build_cell_start: marks the cells whose stencil holds a fluid particle (GridView::
+  // wet): the cells holding one, dilated by the span along x, y and z. A few passes over
+  // the cells, 2 bytes per cell; the SPH store calls it, the DEM does not need it.
+  void mark_wet();
   // The number of live (class < 2) particles after build_cell_start: a 4-byte copy to
   // the host (a synchronisation on the GPU, so the step does not ask for it there).
   [[nodiscard]] int live_count() const;
 
   [[nodiscard]] const std::uint32_t* permutation() const { return perm_.data(); }
-  [[nodiscard]] GridView view(const Vec3* sorted_pos) const { return {spec_, cell_start_.data(), sorted_pos}; }
+  [[nodiscard]] GridView view(const Vec3* sorted_pos) const {
+    return {spec_, cell_start_.data(), sorted_pos, wet_.size() == spec_.cells() ? wet_.data() : nullptr};
+  }
   [[nodiscard]] std::size_t bytes() const {
-    return keys_.bytes() + keys64_.bytes() + perm_.bytes() + cell_start_.bytes();
+    return keys_.bytes() + keys64_.bytes() + perm_.bytes() + cell_start_.bytes() + wet_.bytes() + wet_scratch_.bytes();
   }
 
 private:
   GridSpec spec_;
   par::Buffer<std::uint32_t> keys_, perm_, cell_start_;
   par::Buffer<std::uint64_t> keys64_; // (key << 32 | id), only for sorts by id
+  par::Buffer<std::uint8_t> wet_, wet_scratch_;
 };
 
 } // namespace surge::neighbour

@@ -88,6 +88,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   });
   if (distributed_) reorder(halo_, cls_, perm);
   grid.build_cell_start(n_);
+  grid.mark_wet();
   // The host knows how many were flagged, so the GPU need not report the live count.
   // The CPU builds, where the check costs nothing, verify it on every sort.
   const int live = n_ - removed_pending_;

@@ -83,6 +83,16 @@ template <class T>
   }
 }
 
+// The density diffusion term of a pair of fluid particles (each argument as in add_pair_terms).
+// A function, not a lambda: GCC 12 fails (an internal error) on a lambda returning a
+// 32-byte vector in the SSE2 copy of the batched loop.
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE T diffusion_term(const WcsphParams& prm, const Vec3T<T>& rij, const Vec3T<T>& grad,
+                                                     T rho_i, T rho_j, T inv_rho_sum, T inv_r2e) {
+  const T rho_h = hydrostatic_density(prm, rij);
+  return prm.mass * 4 * inv_rho_sum * (rho_j - rho_i - rho_h) * (-dot(rij, grad)) * inv_r2e;
+}
+
 // Adds the terms of the pairs (i, j) to s: rij = x_i - x_j, r2 = |rij|^2, r = |rij|;
 // `diffuse`: both are fluid (density diffusion acts between fluid particles only).
 template <class T, class Mask>
@@ -99,14 +109,10 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   const T mu = h * vr * inv_r2e;
   const T amu = mu < 0 ? -mu : mu;
   s.vsig = amu > s.vsig ? amu : s.vsig;
-  auto diffusion = [&] {
-    const T rho_h = hydrostatic_density(prm, rij);
-    return prm.mass * 4 * inv_rho_sum * (b.rho - a.rho - rho_h) * (-dot(rij, grad)) * inv_r2e;
-  };
-  if constexpr (std::is_same_v<T, Real>) {
-    if (diffuse) s.diff += diffusion(); // one pair: skipped where it does not act (pow for Fourtakas)
-  } else {
-    s.diff += diffuse ? diffusion() : T{}; // a batch: every lane computed, 0 added where it does not act
+  if constexpr (std::is_same_v<T, Real>) { // one pair: skipped where it does not act (pow for Fourtakas)
+    if (diffuse) s.diff += diffusion_term(prm, rij, grad, a.rho, b.rho, inv_rho_sum, inv_r2e);
+  } else { // a batch: every lane computed, 0 added where it does not act
+    s.diff += diffuse ? diffusion_term(prm, rij, grad, a.rho, b.rho, inv_rho_sum, inv_r2e) : T{};
   }
   T coef = (a.press + b.press) / (a.rho * b.rho);
   const T visc = prm.alpha * prm.eos.c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
@@ -123,6 +129,14 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   out.vsig = s.vsig;
   out.wall = wall;
   return out;
+}
+
+// Writes particle i's rates (and, with the no-penetration condition, its wall plane).
+SURGE_HD inline void store_rates(const particles::ParticleView& p, WallPlane* faces, int i, const Rates& r) {
+  p.acc[i] = r.acc;
+  p.drho[i] = r.drho;
+  p.vsig[i] = r.vsig;
+  if (faces) faces[i] = r.wall;
 }
 
 // Offers the faces and the sphere of wall particle j (at x_i - rij, |rij| = r) to the

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <vector>
 #include <immintrin.h>
 
 // Each instruction set's copy lives in its own namespace, compiled under its own target
@@ -35,8 +37,8 @@ namespace sse2 {
 } // namespace sse2
 
 RatesFn batched_rates(const char* isa) {
-  if (std::strcmp(isa, "avx2") == 0) return __builtin_cpu_supports("avx2") ? &avx2::rates : nullptr;
-  if (std::strcmp(isa, "sse2") == 0) return &sse2::rates;
+  if (std::strcmp(isa, "avx2") == 0) return __builtin_cpu_supports("avx2") ? &avx2::rates_range : nullptr;
+  if (std::strcmp(isa, "sse2") == 0) return &sse2::rates_range;
   return nullptr;
 }
 

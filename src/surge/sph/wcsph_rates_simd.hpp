@@ -7,8 +7,11 @@
 
 namespace surge::sph {
 
-using RatesFn = Rates (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&, int,
-                          const WallHoldView&);
+// Computes and stores (store_rates) the rates of particles [begin, end).
+using RatesFn = void (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&,
+                         const WallHoldView&, WallPlane* faces, int begin, int end);
+// The blocks of particles the solver hands to one call.
+constexpr int rates_block = 16;
 
 // The batched rates for one instruction set: "avx2" or "sse2"; null for a set this CPU
 // lacks or an unknown name.

@@ -12,13 +12,6 @@ namespace detail {
 // The loops of one SPH step, as free functions: nvcc's extended lambdas may not
 // live in private member functions.
 
-SURGE_HD inline void store_rates(const particles::ParticleView& p, WallPlane* faces, int i, const Rates& r) {
-  p.acc[i] = r.acc;
-  p.drho[i] = r.drho;
-  p.vsig[i] = r.vsig;
-  if (faces) faces[i] = r.wall;
-}
-
 // EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
 // condition (`faces` not null) the wall plane each fluid particle would reach first. On
 // CPUs the batched pair loop (wcsph_rates_simd.hpp) unless built or asked without it.
@@ -28,7 +21,11 @@ void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbo
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
 #if defined(SURGE_SIMD)
   if (const RatesFn batched = batched_rates()) {
-    par::parallel_for_uneven(p.n, [=](int i) { store_rates(p, faces, i, batched(prm, g, p, i, gh)); });
+    // Blocks of consecutive particles (one cell's share its candidates in the AVX2 copy).
+    const int blocks = (p.n + rates_block - 1) / rates_block;
+    par::parallel_for_uneven(blocks, [=](int b) {
+      batched(prm, g, p, gh, faces, b * rates_block, b + 1 < blocks ? (b + 1) * rates_block : p.n);
+    });
     return;
   }
 #endif
