@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <immintrin.h>
 #include <limits>
 #include <vector>
-#include <immintrin.h>
 
 // Each instruction set's copy lives in its own namespace, compiled under its own target
 // options; everything it calls from the headers above is inlined into it (SURGE_INLINE),
