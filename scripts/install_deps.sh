@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake git libyaml-cpp-dev libthrust-dev libgtest-dev googletest
       python3 python3-numpy python3-matplotlib python3-vtk9 clang clang-format clang-tidy libomp-dev libclang-rt-dev
-      openmpi-bin libopenmpi-dev)
+      openmpi-bin libopenmpi-dev libgdal-dev python3-gdal)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

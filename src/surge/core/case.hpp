@@ -51,16 +51,23 @@ struct SphConfig {
 };
 
 struct FluidRegion {
+  // A box of water, or a reservoir: every lattice point below `level`, clear of the walls
+  // and connected to the seed point's column (sph/initial_state.cpp). A reservoir's box is
+  // the domain below its level (what the hydrostatic start and the sound speed read).
   Box box;
   Vec3d velocity{};
+  bool reservoir = false;
+  double level = 0;              // the still water surface [m]
+  double seed_x = 0, seed_y = 0; // a point of the water's surface, in the reservoir
   int line = 0;
 };
 
 enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };
 
 struct WallSpec {
-  std::string name; // for force gauges
-  bool is_mesh = false;
+  std::string name;       // for force gauges
+  bool is_mesh = false;   // a triangle surface: an STL file, or an elevation grid (`terrain`)
+  bool terrain = false;   // mesh_path is a raster of ground elevations (geometry/terrain.hpp)
   Box box;                // box walls: the tank interior, or the solid obstacle
   bool solid = false;     // box: particles fill the inside instead of surrounding it; mesh: no water behind it
   std::vector<Face> open; // box tank: faces left without wall
@@ -112,8 +119,9 @@ struct DemPackSpec {
 struct DemWallSpec {
   std::string name; // optional, for dem_wall gauges
   bool is_mesh = false;
+  bool terrain = false;           // mesh_path is an elevation grid, not an STL file
   Vec3d point{}, normal{0, 0, 1}; // plane
-  std::string mesh_path;          // STL
+  std::string mesh_path;          // STL or raster
   int material = 0;
   int line = 0;
 };

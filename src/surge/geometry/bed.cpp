@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace surge::geometry {
 namespace {
@@ -25,7 +27,12 @@ bool open_face(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.o
 std::optional<double> bed_below(const WallSpec& w, const Mesh* mesh, double x, double y) {
   if (w.is_mesh) {
     std::optional<double> top;
-    for (const auto& t : mesh->tris) {
+    std::vector<std::uint32_t> near;
+    // A margin for crossing_height's tolerance at the triangles' edges.
+    const double e = mesh->index ? 1e-8 * mesh->index->cell() : 0;
+    triangles_near(*mesh, {x - e, y - e, -1e300}, {x + e, y + e, 1e300}, near);
+    for (const std::uint32_t i : near) {
+      const Triangle& t = mesh->tris[i];
       if (!(t.normal().z > 0)) continue; // facing down or sideways: a ceiling or a side wall
       if (const auto z = crossing_height(t, x, y); z && (!top || *z > *top)) top = z;
     }

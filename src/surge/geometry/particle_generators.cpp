@@ -1,7 +1,11 @@
 #include "surge/geometry/particle_generators.hpp"
 
+#include "surge/geometry/raster.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace surge::geometry {
 
@@ -51,23 +55,41 @@ double first_layer(double lo, double hi, double dp, bool fit, double f) {
 bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.open.end(), f) != w.open.end(); }
 
 // Signed distance to the closest triangle, positive on the side the normals point to;
-// `at` receives the closest point.
-double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr) {
-  double best = 1e300, best_sign = 1, best_align = -1;
+// `at` receives the closest point. The search box grows until a triangle lies within it:
+// every closer triangle then meets the box, and the candidates come in the mesh's order,
+// so the result (ties included) is that of a loop over all triangles.
+// Beyond `limit` a caller needs the side only: a terrain (a height field) gives it from its
+// height at p, far cheaper than the growing search (other meshes search on).
+double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr, double limit = 1e300) {
+  thread_local std::vector<std::uint32_t> near;
+  double best = 1e300, best_sign = 1;
   Vec3d best_point = p;
-  for (const auto& t : m.tris) {
-    const Vec3d c = closest_point(t, p);
-    const Vec3d d = p - c;
-    const double dist = norm(d);
-    const double side = dot(d, t.normal());
-    // Several triangles can share the closest point (an edge or vertex): take the one
-    // whose normal is best aligned with p - c, which decides the side correctly.
-    const double align = dist > 0 ? std::fabs(side) / dist : 1;
-    if (dist < best - 1e-12 || (std::fabs(dist - best) <= 1e-12 && align > best_align)) {
-      best = dist;
-      best_sign = side < 0 ? -1 : 1;
-      best_align = align;
-      best_point = c;
+  for (double r = m.index ? m.index->cell() : 1e300;; r *= 2) {
+    triangles_near(m, p - Vec3d{r, r, r}, p + Vec3d{r, r, r}, near);
+    double best_align = -1;
+    best = 1e300;
+    for (const std::uint32_t i : near) {
+      const Triangle& t = m.tris[i];
+      const Vec3d c = closest_point(t, p);
+      const Vec3d d = p - c;
+      const double dist = norm(d);
+      const double side = dot(d, t.normal());
+      // Several triangles can share the closest point (an edge or vertex): take the one
+      // whose normal is best aligned with p - c, which decides the side correctly.
+      const double align = dist > 0 ? std::fabs(side) / dist : 1;
+      if (dist < best - 1e-12 || (std::fabs(dist - best) <= 1e-12 && align > best_align)) {
+        best = dist;
+        best_sign = side < 0 ? -1 : 1;
+        best_align = align;
+        best_point = c;
+      }
+    }
+    const bool all = !m.index || near.size() == m.tris.size();
+    if (all || best + 1e-9 * r <= r) break;
+    // No triangle within r >= limit: |d| > r, and the side is what the caller needs.
+    if (r >= limit && m.heights && !at) {
+      const double z = surface_height(*m.heights, p.x, p.y);
+      if (!std::isnan(z)) return p.z >= z ? r : -r;
     }
   }
   if (at) *at = best_point;
@@ -144,14 +166,23 @@ Box bounds(const Mesh& m) {
   return b;
 }
 
-std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers) {
+std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers, const Box* clip) {
   const Box box = bounds(m);
-  const Vec3d lo = box.min, hi = box.max;
   const double band = layers * dp;
+  Vec3d lo = box.min - Vec3d{band, band, band}, hi = box.max + Vec3d{band, band, band};
+  if (clip)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::max(lo[k], clip->min[k]);
+      hi[k] = std::min(hi[k], clip->max[k]);
+    }
   long i0[3], i1[3];
   for (int k = 0; k < 3; ++k) {
-    i0[k] = static_cast<long>(std::floor((lo[k] - band - origin[k]) / dp - 0.5));
-    i1[k] = static_cast<long>(std::ceil((hi[k] + band - origin[k]) / dp - 0.5));
+    // Without a clip box, a spacing beyond the band (as before clip boxes existed); with
+    // one, the lattice points inside it.
+    i0[k] = clip ? static_cast<long>(std::ceil((lo[k] - origin[k]) / dp - 0.5))
+                 : static_cast<long>(std::floor((lo[k] - origin[k]) / dp - 0.5));
+    i1[k] = clip ? static_cast<long>(std::floor((hi[k] - origin[k]) / dp - 0.5))
+                 : static_cast<long>(std::ceil((hi[k] - origin[k]) / dp - 0.5));
   }
   std::vector<Vec3d> pts;
   for (long iz = i0[2]; iz <= i1[2]; ++iz)
@@ -159,7 +190,7 @@ std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int 
       for (long ix = i0[0]; ix <= i1[0]; ++ix) {
         const Vec3d p{origin.x + (static_cast<double>(ix) + 0.5) * dp, origin.y + (static_cast<double>(iy) + 0.5) * dp,
                       origin.z + (static_cast<double>(iz) + 0.5) * dp};
-        const double d = signed_distance(m, p);
+        const double d = signed_distance(m, p, nullptr, band);
         if (d <= 0 && d > -band) pts.push_back(p);
       }
   return pts;
@@ -199,7 +230,10 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
     // lie within a spacing of it (its first layer; up to three faces, coplanar triangles
     // once).
     const Vec3d mirror_dir = norm(mirror) > 0 ? mirror * (1 / norm(mirror)) : Vec3d{};
-    for (const auto& t : mesh->tris) {
+    thread_local std::vector<std::uint32_t> near;
+    triangles_near(*mesh, p - Vec3d{dp, dp, dp}, p + Vec3d{dp, dp, dp}, near);
+    for (const std::uint32_t i : near) {
+      const Triangle& t = mesh->tris[i];
       const Vec3d n = t.normal();
       const double behind = dot(t.a - p, n); // > 0: p behind the triangle's plane
       if (!(behind > 0) || norm(closest_point(t, p) - p) >= dp) continue;
@@ -243,10 +277,10 @@ Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3
   return r;
 }
 
-bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) {
+bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp, double mesh_clearance) {
   if (w.is_mesh) {
-    const double d = signed_distance(*mesh, p);
-    return d < 0.5 * dp && (w.solid || d > -4 * dp);
+    const double d = signed_distance(*mesh, p, nullptr, 4 * dp);
+    return d < mesh_clearance * dp + (mesh_clearance > 0 ? 0.0 : 1e-12) && (w.solid || d > -4 * dp);
   }
   // Water dp/2 from a solid box's face is where it belongs (as at a tank's faces): only
   // closer than that is blocked (1e-6 dp of slack, so that a lattice point on dp/2 stays).
@@ -255,7 +289,7 @@ bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp) 
 
 bool behind_wall(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double band) {
   if (w.is_mesh) {
-    const double d = signed_distance(*mesh, p);
+    const double d = signed_distance(*mesh, p, nullptr, band);
     return d < 0 && (w.solid || d > -band);
   }
   const Box& b = w.box;

@@ -20,8 +20,9 @@ std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred = false);
 // needs), else on the lattice (i + 1/2) dp from its lowest corner.
 std::vector<Vec3d> box_wall(const WallSpec& w, double dp, int layers, bool fit = true);
 // Lattice points (aligned to `origin` + (i + 1/2) dp) behind the mesh surface
-// (the side its normals point away from) within layers * dp of it.
-std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers);
+// (the side its normals point away from) within layers * dp of it; with `clip`, only those
+// inside that box (a terrain's, whose hills may rise far above the domain).
+std::vector<Vec3d> mesh_wall(const Mesh& m, const Vec3d& origin, double dp, int layers, const Box* clip = nullptr);
 // The ghost node of a wall particle at p (modified dynamic boundary): p mirrored through
 // the closest point of the wall's surface, into the fluid side.
 Vec3d ghost_point(const WallSpec& w, const Mesh* mesh, const Vec3d& p);
@@ -38,8 +39,8 @@ struct Reach {
 // box_wall (the solid box's lattice stretched to fit it).
 Reach wall_reach(const WallSpec& w, const Mesh* mesh, const Vec3d& p, const Vec3d& mirror, double dp, bool fit);
 // True if a fluid particle at p would overlap wall w (inside a solid box, or
-// behind or within dp/2 of a mesh surface).
-bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
+// behind or within mesh_clearance dp of a mesh surface; 0: at or behind it).
+bool blocked_by(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp, double mesh_clearance = 0.5);
 // The mesh's axis-aligned bounding box.
 Box bounds(const Mesh& m);
 // True if p lies behind a face of wall w, within its `band` of wall layers (a tank's

@@ -89,11 +89,25 @@ Mesh parse_stl(const std::string& s, const std::string& name) {
     m = parse_ascii(s, name);
   else
     throw InputError(name, 0, "", "not an STL file (neither ascii 'solid ...' nor a binary STL of consistent size)");
+  finish_mesh(m, name);
+  return m;
+}
+
+void finish_mesh(Mesh& m, const std::string& name) {
   if (m.tris.empty()) throw InputError(name, 0, "", "the mesh has no triangles");
   for (std::size_t i = 0; i < m.tris.size(); ++i)
     if (norm(cross(m.tris[i].b - m.tris[i].a, m.tris[i].c - m.tris[i].a)) <= 0)
       throw InputError(name, 0, "", "triangle " + std::to_string(i) + " is degenerate (zero area)");
-  return m;
+  m.index = std::make_shared<const TriangleIndex>(m.tris);
+}
+
+void triangles_near(const Mesh& m, const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) {
+  if (m.index) {
+    m.index->overlapping(lo, hi, out);
+    return;
+  }
+  out.resize(m.tris.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::uint32_t>(i);
 }
 
 Mesh read_stl(const std::string& path) {

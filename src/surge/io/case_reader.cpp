@@ -282,16 +282,18 @@ DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::stri
   read_fields(r, w, path, dem_wall_fields(), ws);
   ws.line = w.Mark().line + 1;
   ws.material = material_of(r, w, path, dem);
-  if (w["plane"].IsDefined() == w["mesh"].IsDefined())
-    r.fail(w, path, "a DEM wall needs exactly one of 'plane' or 'mesh'");
+  if (int(w["plane"].IsDefined()) + int(w["mesh"].IsDefined()) + int(w["terrain"].IsDefined()) != 1)
+    r.fail(w, path, "a DEM wall needs exactly one of 'plane', 'mesh' (an STL file) or 'terrain' (an elevation grid)");
   if (const auto pl = w["plane"]; pl.IsDefined()) {
     r.check_keys(pl, path + ".plane", {"point", "normal"});
     ws.point = r.require<Vec3d>(pl, path + ".plane", "point");
     ws.normal = r.require<Vec3d>(pl, path + ".plane", "normal");
     if (!(norm(ws.normal) > 0)) r.fail(pl["normal"], path + ".plane.normal", "must not be zero");
   } else {
+    const char* key = w["mesh"].IsDefined() ? "mesh" : "terrain";
     ws.is_mesh = true;
-    ws.mesh_path = resolve_file(r, w["mesh"], path + ".mesh", "file ");
+    ws.terrain = w["terrain"].IsDefined();
+    ws.mesh_path = resolve_file(r, w[key], path + "." + key, "file ");
   }
   return ws;
 }
@@ -349,10 +351,31 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
 FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string& path, const Case& c) {
   r.check_keys(f, path, keys_under("fluid[]"));
   FluidRegion reg;
-  if (!f["box"].IsDefined()) r.fail(f, path + ".box", "is required");
-  reg.box = parse_box(r, f["box"], path + ".box");
+  if (f["box"].IsDefined() == f["reservoir"].IsDefined())
+    r.fail(f, path, "a fluid region needs exactly one of 'box' or 'reservoir'");
   read_fields(r, f, path, fluid_fields(), reg);
   reg.line = f.Mark().line + 1;
+  if (const auto res = f["reservoir"]; res.IsDefined()) {
+    const std::string rp = path + ".reservoir";
+    r.check_keys(res, rp, {"level", "seed"});
+    reg.reservoir = true;
+    reg.level = r.require<double>(res, rp, "level");
+    const auto seed = res["seed"];
+    if (!seed.IsDefined() || !seed.IsSequence() || seed.size() != 2)
+      r.fail(seed.IsDefined() ? seed : res, rp + ".seed", "expected [x, y]: a point of the lake");
+    reg.seed_x = r.as<double>(seed[0], rp + ".seed");
+    reg.seed_y = r.as<double>(seed[1], rp + ".seed");
+    const Box& d = c.domain;
+    if (!(reg.level > d.min.z + c.dp))
+      r.fail(res["level"], rp + ".level", "the level lies below the domain's bottom (plus dp): no water fits");
+    if (reg.level > d.max.z)
+      r.fail(res["level"], rp + ".level", "the level lies above the domain's top; raise domain.max.z");
+    if (reg.seed_x < d.min.x || reg.seed_x > d.max.x || reg.seed_y < d.min.y || reg.seed_y > d.max.y)
+      r.fail(res["seed"], rp + ".seed", "the seed point lies outside the domain");
+    reg.box = {d.min, {d.max.x, d.max.y, reg.level}};
+    return reg;
+  }
+  reg.box = parse_box(r, f["box"], path + ".box");
   if (!c.domain.contains(reg.box.min, 1e-9) || !c.domain.contains(reg.box.max, 1e-9))
     r.fail(f["box"], path + ".box", "fluid region lies (partly) outside the domain; enlarge domain or move the water");
   const auto cells = [&](int k) { return std::floor((reg.box.max[k] - reg.box.min[k]) / c.dp + 1e-3); };
@@ -367,8 +390,9 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
   ws.name = r.get<std::string>(w, path, "name", "wall" + std::to_string(i));
   ws.line = w.Mark().line + 1;
   read_fields(r, w, path, wall_fields(), ws);
-  const bool has_box = w["box"].IsDefined(), has_mesh = w["mesh"].IsDefined();
-  if (has_box == has_mesh) r.fail(w, path, "a wall needs exactly one of 'box' or 'mesh'");
+  const bool has_box = w["box"].IsDefined(), has_mesh = w["mesh"].IsDefined(), has_terrain = w["terrain"].IsDefined();
+  if (int(has_box) + int(has_mesh) + int(has_terrain) != 1)
+    r.fail(w, path, "a wall needs exactly one of 'box', 'mesh' (an STL file) or 'terrain' (an elevation grid)");
   if (has_box) {
     ws.box = parse_box(r, w["box"], path + ".box");
     if (const auto o = w["open"]; o.IsDefined()) {
@@ -379,9 +403,13 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
     if (w["open"].IsDefined()) r.fail(w["open"], path + ".open", "'open' applies to box walls only");
     // A solid mesh: everything behind its surface (negative signed distance) is wall,
     // so no water is made there (a slope with ground under it).
+    // A terrain has the ground under it: solid whatever the case says.
+    const char* key = has_mesh ? "mesh" : "terrain";
     ws.is_mesh = true;
-    ws.mesh = r.as<std::string>(w["mesh"], path + ".mesh");
-    ws.mesh_path = resolve_file(r, w["mesh"], path + ".mesh", "mesh file ");
+    ws.terrain = has_terrain;
+    ws.solid = ws.solid || has_terrain;
+    ws.mesh = r.as<std::string>(w[key], path + "." + key);
+    ws.mesh_path = resolve_file(r, w[key], path + "." + key, has_mesh ? "mesh file " : "elevation grid ");
   }
   for (const auto& other : c.walls)
     if (other.name == ws.name) r.fail(w, path + ".name", "duplicate wall name '" + ws.name + "'");
@@ -392,6 +420,7 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
 // or clear of it.
 void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c) {
   for (std::size_t i = 0; i < c.fluid.size(); ++i) {
+    if (c.fluid[i].reservoir) continue; // bounded by the walls themselves
     const Box& f = c.fluid[i].box;
     for (const auto& w : c.walls) {
       if (w.is_mesh || w.solid) continue;
@@ -672,7 +701,7 @@ void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
   for (const auto& w : walls) {
     e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << w.name;
     if (w.is_mesh) {
-      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+      e << YAML::Key << (w.terrain ? "terrain" : "mesh") << YAML::Value << w.mesh_path;
     } else {
       e << YAML::Key << "box" << YAML::Value;
       write_box(e, w.box);
@@ -738,7 +767,7 @@ void write_dem(YAML::Emitter& e, const DemConfig& d) {
     e << YAML::BeginMap;
     write_fields(e, dem_wall_fields(), w);
     if (w.is_mesh) {
-      e << YAML::Key << "mesh" << YAML::Value << w.mesh_path;
+      e << YAML::Key << (w.terrain ? "terrain" : "mesh") << YAML::Value << w.mesh_path;
     } else {
       e << YAML::Key << "plane" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "point" << YAML::Value;
       write_vec(e, w.point);
@@ -786,8 +815,15 @@ std::string to_yaml(const Case& c) {
   write_section(e, "sph", sph_fields(), sph);
   e << YAML::Key << "fluid" << YAML::Value << YAML::BeginSeq;
   for (const auto& f : c.fluid) {
-    e << YAML::BeginMap << YAML::Key << "box" << YAML::Value;
-    write_box(e, f.box);
+    e << YAML::BeginMap;
+    if (f.reservoir) {
+      e << YAML::Key << "reservoir" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "level"
+        << YAML::Value << f.level << YAML::Key << "seed" << YAML::Value << YAML::Flow << YAML::BeginSeq << f.seed_x
+        << f.seed_y << YAML::EndSeq << YAML::EndMap;
+    } else {
+      e << YAML::Key << "box" << YAML::Value;
+      write_box(e, f.box);
+    }
     write_fields(e, fluid_fields(), f);
     e << YAML::EndMap;
   }

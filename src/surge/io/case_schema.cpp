@@ -300,7 +300,12 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"sph", "mapping", "", "", "", "the water's model"});
   add(k, "sph.", sph_fields());
   k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});
-  k.push_back({"fluid[].box", "{min, max}", "required", "m", "inside the domain", "the box of water"});
+  k.push_back({"fluid[].box", "{min, max}", "", "m", "inside the domain", "a box of water"});
+  k.push_back({"fluid[].reservoir", "{level, seed}", "", "", "",
+               "water below a level, clear of the walls, connected to the seed (a terrain's lake)"});
+  k.push_back({"fluid[].reservoir.level", "number", "required", "m", "in the domain", "the still water surface"});
+  k.push_back({"fluid[].reservoir.seed", "[x, y]", "required", "m", "on the water",
+               "a point of the lake: water is placed where it connects to it"});
   add(k, "fluid[].", fluid_fields());
   k.push_back({"walls", "list", "", "", "", "SPH walls: box tanks, solid boxes, triangle meshes"});
   k.push_back({"walls[].name", "text", "wallN", "", "unique", "name for force gauges"});
@@ -310,6 +315,8 @@ std::vector<KeyDoc> build_keys() {
   add(k, "walls[].", wall_fields());
   k.push_back({"walls[].mesh", "file", "", "", "ASCII or binary STL",
                "a triangle mesh (relative to the case file); normals point to the water"});
+  k.push_back({"walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
+               "the ground: an elevation grid (GeoTIFF, ESRI ASCII, ...) cropped to the domain, solid below"});
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
   k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
   k.push_back({"gauges[].type", "choice", "required", "", "height | pressure | velocity | force | sphere | dem_wall",
@@ -337,6 +344,8 @@ std::vector<KeyDoc> build_keys() {
   add(k, "dem.walls[].", dem_wall_fields());
   k.push_back({"dem.walls[].plane", "{point, normal}", "", "m", "normal not zero", "an infinite plane"});
   k.push_back({"dem.walls[].mesh", "file", "", "", "STL", "a triangle mesh"});
+  k.push_back({"dem.walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
+               "the ground from an elevation grid, cropped to the domain"});
   k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
   k.push_back({"dem.packs", "list", "", "", "", "sphere packs"});
   k.push_back({"dem.packs[].box", "{min, max}", "", "m", "inside the domain", "a lattice (or random pack) in a box"});

@@ -3,6 +3,7 @@
 #include "surge/core/error.hpp"
 #include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/stl_mesh.hpp"
+#include "surge/geometry/terrain.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -83,7 +84,7 @@ DemSetup dem_setup(const Case& c) {
       continue;
     }
     s.wall_index.emplace_back(-1, mesh_index);
-    for (const auto& t : geometry::read_stl(w.mesh_path).tris)
+    for (const auto& t : geometry::load_surface(w.mesh_path, w.terrain, c.domain).tris)
       s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material});
     ++mesh_index;
   }

@@ -170,6 +170,9 @@ int check(const Case& c) {
     std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes (%.1f %%; lattices of whole spacings, "
                 "centred in each box)\n",
                 placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
+    if (init.reservoir_columns > 0)
+      std::printf("reservoir   free surface %.6g m^2 (%ld lattice columns of dp^2), the water counted above\n",
+                  static_cast<double>(init.reservoir_columns) * c.dp * c.dp, init.reservoir_columns);
   }
   if (cp) {
     std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "

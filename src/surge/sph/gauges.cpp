@@ -1,6 +1,7 @@
 #include "surge/sph/gauges.hpp"
 
 #include "surge/geometry/bed.hpp"
+#include "surge/geometry/terrain.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +33,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   origin_z_ = o.z;
   std::vector<std::unique_ptr<geometry::Mesh>> meshes;
   for (const auto& w : c.walls)
-    meshes.push_back(w.is_mesh && needs_bed(c) ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path))
+    meshes.push_back(w.is_mesh && needs_bed(c) ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
                                                : nullptr);
   for (const auto& g : c.gauges) {
     Probe pr{g, static_cast<int>(points_host_.size()), 0, 0, 0};

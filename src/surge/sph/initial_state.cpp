@@ -2,6 +2,8 @@
 
 #include "surge/core/error.hpp"
 #include "surge/geometry/particle_generators.hpp"
+#include "surge/geometry/reservoir.hpp"
+#include "surge/geometry/terrain.hpp"
 
 #include <cmath>
 #include <memory>
@@ -38,21 +40,39 @@ InitialState build_initial_state(const Case& c) {
   const int layers = geometry::wall_layers(c);
   std::vector<std::unique_ptr<geometry::Mesh>> meshes;
   for (const auto& w : c.walls)
-    meshes.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::read_stl(w.mesh_path)) : nullptr);
+    meshes.push_back(w.is_mesh
+                         ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
+                         : nullptr);
 
   const double rho0 = c.sph.rho0;
   const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
+  auto blocked = [&](const Vec3d& p) {
+    for (std::size_t w = 0; w < c.walls.size(); ++w)
+      if (geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp)) return true;
+    return false;
+  };
   for (const auto& f : c.fluid) {
-    // Centred: a box that is not a whole number of spacings keeps its water in the middle,
-    // (surge check reports the volume placed against the volume asked for).
-    s.fluid_volume_asked += f.box.volume();
-    for (const auto& p : geometry::fill_box(f.box, c.dp, true)) {
-      bool blocked = false;
-      for (std::size_t w = 0; w < c.walls.size() && !blocked; ++w)
-        blocked = geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp);
-      if (blocked) {
+    std::vector<Vec3d> pts;
+    if (f.reservoir) {
+      auto fill = geometry::fill_reservoir(f, c.domain, c.dp, [&](const Vec3d& p) {
+        for (std::size_t w = 0; w < c.walls.size(); ++w)
+          if (geometry::keeps_water_out(c.walls[w], meshes[w].get(), p, c.dp)) return true;
+        return false;
+      });
+      if (!fill.seed_problem.empty()) throw InputError(c.source, f.line, "fluid.reservoir.seed", fill.seed_problem);
+      s.reservoir_columns += fill.columns;
+      pts = std::move(fill.points);
+      s.fluid_volume_asked += static_cast<double>(pts.size()) * c.dp * c.dp * c.dp;
+    } else {
+      // Centred: a box that is not a whole number of spacings keeps its water in the middle,
+      // (surge check reports the volume placed against the volume asked for).
+      s.fluid_volume_asked += f.box.volume();
+      pts = geometry::fill_box(f.box, c.dp, true);
+    }
+    for (const auto& p : pts) {
+      if (!f.reservoir && blocked(p)) {
         ++s.fluid_dropped_by_walls;
         continue;
       }
@@ -67,8 +87,12 @@ InitialState build_initial_state(const Case& c) {
     // SPHERIC at 3 cm lost 193 particles for density at 0.95-1.0 s (none before,
     // docs/validation.md).
     const bool fit = c.sph.boundary == "mdbc";
-    const auto pts = ws.is_mesh ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers)
-                                : geometry::box_wall(ws, c.dp, layers, fit);
+    // A terrain's layers under the domain only: its hills may rise far above it.
+    Box under = c.domain;
+    under.min.z -= layers * c.dp;
+    const auto pts = ws.is_mesh
+                         ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers, ws.terrain ? &under : nullptr)
+                         : geometry::box_wall(ws, c.dp, layers, fit);
     const std::uint32_t first = next_id;
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);

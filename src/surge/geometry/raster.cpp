@@ -1,0 +1,178 @@
+#include "surge/geometry/raster.hpp"
+
+#include "surge/core/error.hpp"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+namespace surge::geometry {
+namespace {
+void register_drivers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALAllRegister();
+    CPLSetErrorHandler(CPLQuietErrorHandler); // GDAL's messages reach the user through ours
+  });
+}
+std::string last_gdal_error() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? std::string(" (") + m + ")" : std::string();
+}
+// Closes a dataset on every path out.
+struct Dataset {
+  GDALDatasetH h = nullptr;
+  ~Dataset() {
+    if (h) GDALClose(h);
+  }
+};
+} // namespace
+
+Raster read_raster(const std::string& path, bool need_projected) {
+  register_drivers();
+  CPLErrorReset();
+  Dataset ds{GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)};
+  if (!ds.h) throw InputError(path, 0, "", "not a raster GDAL can read" + last_gdal_error());
+  double gt[6];
+  if (GDALGetGeoTransform(ds.h, gt) != CE_None)
+    throw InputError(path, 0, "", "the raster has no georeferencing (no origin and pixel size)");
+  if (gt[2] != 0 || gt[4] != 0)
+    throw InputError(path, 0, "", "the raster is rotated or sheared; warp it north-up first (gdalwarp)");
+  if (!(gt[1] > 0) || gt[5] == 0) throw InputError(path, 0, "", "the raster's pixel size is not positive");
+  Raster r;
+  r.path = path;
+  r.nx = GDALGetRasterXSize(ds.h);
+  r.ny = GDALGetRasterYSize(ds.h);
+  if (r.nx < 2 || r.ny < 2 || GDALGetRasterCount(ds.h) < 1)
+    throw InputError(path, 0, "", "the raster needs a band of at least 2 x 2 pixels");
+  const char* wkt = GDALGetProjectionRef(ds.h);
+  r.crs_wkt = wkt ? wkt : "";
+  if (need_projected) {
+    OGRSpatialReferenceH srs = r.crs_wkt.empty() ? nullptr : OSRNewSpatialReference(r.crs_wkt.c_str());
+    const bool projected = srs && OSRIsProjected(srs);
+    if (srs) OSRDestroySpatialReference(srs);
+    if (!projected)
+      throw InputError(path, 0, "",
+                       r.crs_wkt.empty() ? "the raster has no coordinate system; surge needs a projected one (metres)"
+                                         : "the raster's coordinate system is not projected; reproject it to one in "
+                                           "metres (gdalwarp -t_srs)");
+  }
+  r.dx = gt[1];
+  r.dy = std::fabs(gt[5]);
+  r.x0 = gt[0] + 0.5 * gt[1];
+  // North-up files (gt[5] < 0) store the northern row first.
+  const bool north_up = gt[5] < 0;
+  r.y0 = north_up ? gt[3] + (static_cast<double>(r.ny) - 0.5) * gt[5] : gt[3] + 0.5 * gt[5];
+  GDALRasterBandH band = GDALGetRasterBand(ds.h, 1);
+  int has_nodata = 0;
+  const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+  r.v.assign(static_cast<std::size_t>(r.nx * r.ny), 0.0);
+  std::vector<double> row(static_cast<std::size_t>(r.nx));
+  for (long k = 0; k < r.ny; ++k) {
+    if (GDALRasterIO(band, GF_Read, 0, static_cast<int>(k), static_cast<int>(r.nx), 1, row.data(),
+                     static_cast<int>(r.nx), 1, GDT_Float64, 0, 0) != CE_None)
+      throw InputError(path, 0, "", "cannot read row " + std::to_string(k) + last_gdal_error());
+    const long j = north_up ? r.ny - 1 - k : k;
+    for (long i = 0; i < r.nx; ++i) {
+      const double z = row[static_cast<std::size_t>(i)];
+      r.at(i, j) = (has_nodata && z == nodata) || !std::isfinite(z) ? std::numeric_limits<double>::quiet_NaN() : z;
+    }
+  }
+  return r;
+}
+
+Raster crop(const Raster& r, double xlo, double ylo, double xhi, double yhi, const std::string& what) {
+  // The nodes must span the area: the surface between nodes is what the area holds.
+  const double tol = 1e-9 * std::max(r.dx, r.dy);
+  if (xlo < r.x(0) - tol || xhi > r.x(r.nx - 1) + tol || ylo < r.y(0) - tol || yhi > r.y(r.ny - 1) + tol) {
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "%s: the grid's pixel centres span x [%.3f, %.3f], y [%.3f, %.3f]; the area needs x [%.3f, %.3f], "
+                  "y [%.3f, %.3f]",
+                  what.c_str(), r.x(0), r.x(r.nx - 1), r.y(0), r.y(r.ny - 1), xlo, xhi, ylo, yhi);
+    throw InputError(r.path, 0, "", msg);
+  }
+  auto first = [&](double lo, double o, double d) { return static_cast<long>(std::floor((lo - o) / d + 1e-9)) - 1; };
+  auto last = [&](double hi, double o, double d) { return static_cast<long>(std::ceil((hi - o) / d - 1e-9)) + 1; };
+  const long i0 = std::max(0L, first(xlo, r.x0, r.dx)), i1 = std::min(r.nx - 1, last(xhi, r.x0, r.dx));
+  const long j0 = std::max(0L, first(ylo, r.y0, r.dy)), j1 = std::min(r.ny - 1, last(yhi, r.y0, r.dy));
+  Raster c = r;
+  c.x0 = r.x(i0);
+  c.y0 = r.y(j0);
+  c.nx = i1 - i0 + 1;
+  c.ny = j1 - j0 + 1;
+  c.v.assign(static_cast<std::size_t>(c.nx * c.ny), 0.0);
+  for (long j = 0; j < c.ny; ++j)
+    for (long i = 0; i < c.nx; ++i) {
+      const double z = r.at(i0 + i, j0 + j);
+      if (std::isnan(z)) {
+        char msg[300];
+        std::snprintf(msg, sizeof msg, "%s: no data at the pixel centred on (%.3f, %.3f), inside the area in use",
+                      what.c_str(), c.x(i), c.y(j));
+        throw InputError(r.path, 0, "", msg);
+      }
+      c.at(i, j) = z;
+    }
+  return c;
+}
+
+double surface_height(const Raster& r, double x, double y) {
+  const double u = (x - r.x0) / r.dx, w = (y - r.y0) / r.dy;
+  if (!(u >= 0 && w >= 0 && u <= static_cast<double>(r.nx - 1) && w <= static_cast<double>(r.ny - 1)))
+    return std::numeric_limits<double>::quiet_NaN();
+  const long i = std::min(static_cast<long>(u), r.nx - 2), j = std::min(static_cast<long>(w), r.ny - 2);
+  const double s = u - static_cast<double>(i), t = w - static_cast<double>(j);
+  const double z00 = r.at(i, j), z11 = r.at(i + 1, j + 1);
+  // Split along the diagonal (i, j)-(i + 1, j + 1): below it the triangle with (i + 1, j).
+  if (s >= t) return z00 + s * (r.at(i + 1, j) - z00) + t * (z11 - r.at(i + 1, j));
+  return z00 + t * (r.at(i, j + 1) - z00) + s * (z11 - r.at(i, j + 1));
+}
+
+void write_geotiff(const std::string& path, const Raster& lattice, const std::vector<std::vector<double>>& bands,
+                   const std::vector<std::string>& names) {
+  register_drivers();
+  GDALDriverH drv = GDALGetDriverByName("GTiff");
+  if (!drv) throw std::runtime_error(path + ": GDAL has no GeoTIFF driver");
+  const std::string tmp = path + ".part";
+  CPLErrorReset();
+  {
+    Dataset ds{GDALCreate(drv, tmp.c_str(), static_cast<int>(lattice.nx), static_cast<int>(lattice.ny),
+                          static_cast<int>(bands.size()), GDT_Float32, nullptr)};
+    if (!ds.h) throw std::runtime_error(tmp + ": cannot create the GeoTIFF" + last_gdal_error());
+    double gt[6] = {lattice.x0 - 0.5 * lattice.dx,
+                    lattice.dx,
+                    0,
+                    lattice.y0 + (static_cast<double>(lattice.ny) - 0.5) * lattice.dy,
+                    0,
+                    -lattice.dy};
+    GDALSetGeoTransform(ds.h, gt);
+    if (!lattice.crs_wkt.empty()) GDALSetProjection(ds.h, lattice.crs_wkt.c_str());
+    std::vector<float> row(static_cast<std::size_t>(lattice.nx));
+    const float nodata = -9999.0F;
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      GDALRasterBandH band = GDALGetRasterBand(ds.h, static_cast<int>(b) + 1);
+      GDALSetRasterNoDataValue(band, nodata);
+      if (b < names.size()) GDALSetDescription(band, names[b].c_str());
+      for (long k = 0; k < lattice.ny; ++k) {
+        const long j = lattice.ny - 1 - k;
+        for (long i = 0; i < lattice.nx; ++i) {
+          const double z = bands[b][static_cast<std::size_t>(j * lattice.nx + i)];
+          row[static_cast<std::size_t>(i)] = std::isnan(z) ? nodata : static_cast<float>(z);
+        }
+        if (GDALRasterIO(band, GF_Write, 0, static_cast<int>(k), static_cast<int>(lattice.nx), 1, row.data(),
+                         static_cast<int>(lattice.nx), 1, GDT_Float32, 0, 0) != CE_None)
+          throw std::runtime_error(tmp + ": cannot write" + last_gdal_error());
+      }
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(path + ": cannot rename " + tmp);
+}
+
+} // namespace surge::geometry

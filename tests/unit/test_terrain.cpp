@@ -1,0 +1,185 @@
+// Terrain from elevation grids: GDAL reading (GeoTIFF and ESRI ASCII give the same grid,
+// errors name the file), the surface through the nodes, the triangle index against a loop
+// over all triangles, and a reservoir filled to its level.
+#include "surge/core/error.hpp"
+#include "surge/geometry/particle_generators.hpp"
+#include "surge/geometry/raster.hpp"
+#include "surge/geometry/reservoir.hpp"
+#include "surge/geometry/terrain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using namespace surge;
+using namespace surge::geometry;
+
+namespace {
+// WGS 84 / UTM zone 32N, as GDAL writes it (a projected system in metres).
+const char* utm32n_wkt =
+    R"(PROJCS["WGS 84 / UTM zone 32N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],)"
+    R"(PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],)"
+    R"(PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",9],PARAMETER["scale_factor",0.9996],)"
+    R"(PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1]])";
+
+std::string temp_dir() {
+  const auto d = std::filesystem::temp_directory_path() / ("surge_terrain_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+// A valley: z = 10 + 0.5 |y - 20| + 0.1 x on nodes 2 m apart, x in [500000, 500040],
+// y in [4000000, 4000040].
+Raster valley() {
+  Raster r;
+  r.x0 = 500000;
+  r.y0 = 4000000;
+  r.dx = r.dy = 2;
+  r.nx = r.ny = 21;
+  r.crs_wkt = utm32n_wkt;
+  r.v.resize(static_cast<std::size_t>(r.nx * r.ny));
+  for (long j = 0; j < r.ny; ++j)
+    for (long i = 0; i < r.nx; ++i) r.at(i, j) = 10 + 0.5 * std::fabs(r.y(j) - r.y0 - 20) + 0.1 * (r.x(i) - r.x0);
+  return r;
+}
+
+// ESRI ASCII grid with its .prj: the same grid as a GeoTIFF.
+void write_ascii(const std::string& path, const Raster& r, bool prj, long nodata_at = -1) {
+  std::ofstream f(path);
+  f.precision(12);
+  f << "ncols " << r.nx << "\nnrows " << r.ny << "\nxllcorner " << r.x0 - r.dx / 2 << "\nyllcorner " << r.y0 - r.dy / 2
+    << "\ncellsize " << r.dx << "\nNODATA_value -9999\n";
+  for (long j = r.ny - 1; j >= 0; --j) {
+    for (long i = 0; i < r.nx; ++i) f << (i == nodata_at && j == nodata_at ? -9999.0 : r.at(i, j)) << " ";
+    f << "\n";
+  }
+  if (prj) std::ofstream(path.substr(0, path.size() - 4) + ".prj") << utm32n_wkt;
+}
+} // namespace
+
+TEST(Raster, GeoTiffAndAsciiGridGiveTheSameNodes) {
+  const std::string d = temp_dir();
+  const Raster r = valley();
+  std::vector<std::vector<double>> bands{r.v};
+  write_geotiff(d + "/v.tif", r, bands, {"elevation"});
+  write_ascii(d + "/v.asc", r, true);
+  for (const std::string& f : {d + "/v.tif", d + "/v.asc"}) {
+    const Raster g = read_raster(f);
+    ASSERT_EQ(g.nx, r.nx) << f;
+    ASSERT_EQ(g.ny, r.ny) << f;
+    EXPECT_NEAR(g.x0, r.x0, 1e-9) << f;
+    EXPECT_NEAR(g.y0, r.y0, 1e-9) << f;
+    EXPECT_DOUBLE_EQ(g.dx, 2.0);
+    for (std::size_t k = 0; k < r.v.size(); ++k) ASSERT_NEAR(g.v[k], r.v[k], 1e-5) << f << " node " << k;
+  }
+}
+
+TEST(Raster, ErrorsNameTheFile) {
+  const std::string d = temp_dir();
+  const Raster r = valley();
+  std::ofstream(d + "/not.tif") << "this is not a raster\n";
+  write_ascii(d + "/noprj.asc", r, false);
+  write_ascii(d + "/hole.asc", r, true, 5);
+  auto message = [](const auto& f) {
+    try {
+      f();
+    } catch (const InputError& e) { return std::string(e.what()); }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { (void)read_raster(d + "/not.tif"); }).find("not.tif: not a raster"), std::string::npos);
+  EXPECT_NE(message([&] { (void)read_raster(d + "/noprj.asc"); }).find("no coordinate system"), std::string::npos);
+  // The hole at node (5, 5) = (500010, 4000010): inside a domain over it, outside one beside it.
+  const Box over{{500004, 4000004, 0}, {500030, 4000030, 50}}, beside{{500020, 4000020, 0}, {500040, 4000040, 50}};
+  const auto hole = message([&] { (void)read_terrain(d + "/hole.asc", over); });
+  EXPECT_NE(hole.find("hole.asc"), std::string::npos) << hole;
+  EXPECT_NE(hole.find("no data at the pixel centred on (500010.000, 4000010.000)"), std::string::npos) << hole;
+  EXPECT_NO_THROW((void)read_terrain(d + "/hole.asc", beside));
+  const Box wide{{499990, 4000000, 0}, {500040, 4000040, 50}};
+  EXPECT_NE(message([&] { (void)read_terrain(d + "/hole.asc", wide); }).find("the area needs x [499990.000"),
+            std::string::npos);
+}
+
+TEST(Terrain, SurfaceHeightIsTheMeshAndExactOnPlanes) {
+  const Raster r = valley();
+  const Mesh m = terrain_mesh(r);
+  ASSERT_EQ(m.tris.size(), 2U * 20 * 20);
+  for (const auto& t : m.tris) ASSERT_GT(t.normal().z, 0);
+  // The valley's surface is planar on each side of its axis (y = 4000020, a node row): the
+  // triangulated surface is exact there.
+  for (double x = 500000; x <= 500040; x += 1.37)
+    for (double y = 4000000; y <= 4000040; y += 0.91)
+      ASSERT_NEAR(surface_height(r, x, y), 10 + 0.5 * std::fabs(y - 4000020) + 0.1 * (x - 500000), 1e-9)
+          << x << " " << y;
+  EXPECT_TRUE(std::isnan(surface_height(r, 499999, 4000010)));
+}
+
+TEST(Terrain, IndexedWallLayersEqualTheLoopOverAllTriangles) {
+  const Mesh m = terrain_mesh(valley());
+  Mesh plain;
+  plain.tris = m.tris; // no index, no heights: every query loops over all triangles
+  const Vec3d origin{500000, 4000000, 0};
+  // Wall bands wider and narrower than the index's cells (2 m): a band of 0.5 m once found
+  // no particle at all (the search gave up before looking).
+  for (const double dp : {0.5, 0.25}) {
+    const Box clip{{500012, 4000012, 8}, {500024, 4000024, 20}};
+    const auto a = mesh_wall(m, origin, dp, 2, &clip), b = mesh_wall(plain, origin, dp, 2, &clip);
+    ASSERT_GT(a.size(), 2 * 144 / (dp * dp)); // two layers under 12 m x 12 m, and more on the slopes
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(norm(a[k] - b[k]), 0.0) << k;
+  }
+  WallSpec w;
+  w.is_mesh = w.terrain = w.solid = true;
+  for (double z = 0.25; z < 30; z += 0.5) {
+    const Vec3d p{500013.25, 4000007.75, z};
+    ASSERT_EQ(blocked_by(w, &m, p, 0.5), blocked_by(w, &plain, p, 0.5)) << z;
+    ASSERT_EQ(behind_wall(w, &m, p, 1.5), behind_wall(w, &plain, p, 1.5)) << z;
+    ASSERT_EQ(norm(ghost_point(w, &m, p) - ghost_point(w, &plain, p)), 0.0) << z;
+  }
+}
+
+TEST(Reservoir, FillsTheConnectedLakeToItsLevel) {
+  // The valley with a closed pit beside it (floor 12 m, below the level 14 m; its rim at
+  // 16.7 m): the lake's volume is the integral of level - terrain over the valley alone,
+  // int_0^40 2 (4 - 0.1 x)^2 dx = 1280/3 m^3, and the pit stays dry.
+  Raster r = valley();
+  const double px = 500010, py = 4000036;
+  for (long j = 0; j < r.ny; ++j)
+    for (long i = 0; i < r.nx; ++i) r.at(i, j) = std::min(r.at(i, j), 12 + std::hypot(r.x(i) - px, r.y(j) - py));
+  const Mesh m = terrain_mesh(r);
+  WallSpec w;
+  w.is_mesh = w.terrain = w.solid = true;
+  const double dp = 0.25;
+  const Box domain{{500000, 4000000, 9}, {500040, 4000040, 20}};
+  FluidRegion f;
+  f.reservoir = true;
+  f.level = 14;
+  f.seed_x = 500005;
+  f.seed_y = 4000020;
+  const auto fill = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  ASSERT_TRUE(fill.seed_problem.empty()) << fill.seed_problem;
+  const double volume = static_cast<double>(fill.points.size()) * dp * dp * dp, exact = 1280.0 / 3;
+  EXPECT_NEAR(volume / exact, 1.0, 0.02) << volume << " m^3 placed";
+  for (const auto& p : fill.points) {
+    ASSERT_LE(p.z + dp / 2, f.level + 1e-9);
+    ASSERT_GT(std::hypot(p.x - px, p.y - py), 4.0) << "water in the closed pit";
+  }
+  // The free surface: the top width 2 (8 - 0.2 x) integrated, 320 m^2, less the shore strips
+  // whose ground lies above the top layer's centre (level - dp/2): dp/2 / 0.5 per shore,
+  // 20 m^2 over the valley's 40 m.
+  EXPECT_NEAR(static_cast<double>(fill.columns) * dp * dp / 300.0, 1.0, 0.02);
+  // Seeded in the pit, the pit alone fills (about pi 2^2 2 / 3 = 8.4 m^3); on the bank, an error.
+  f.seed_x = px;
+  f.seed_y = py;
+  const auto pit = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  EXPECT_NEAR(static_cast<double>(pit.points.size()) * dp * dp * dp, 8 * M_PI / 3, 2.5);
+  f.seed_x = 500005;
+  f.seed_y = 4000035;
+  const auto dry = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  EXPECT_TRUE(dry.points.empty());
+  EXPECT_NE(dry.seed_problem.find("the seed point (500005.000, 4000035.000) is on dry land"), std::string::npos)
+      << dry.seed_problem;
+}
