@@ -159,7 +159,8 @@ TEST(Reservoir, FillsTheConnectedLakeToItsLevel) {
   f.level = 14;
   f.seed_x = 500005;
   f.seed_y = 4000020;
-  const auto fill = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  const auto fill =
+      fill_reservoir(f, domain, domain.min, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
   ASSERT_TRUE(fill.seed_problem.empty()) << fill.seed_problem;
   const double volume = static_cast<double>(fill.points.size()) * dp * dp * dp, exact = 1280.0 / 3;
   EXPECT_NEAR(volume / exact, 1.0, 0.02) << volume << " m^3 placed";
@@ -174,11 +175,13 @@ TEST(Reservoir, FillsTheConnectedLakeToItsLevel) {
   // Seeded in the pit, the pit alone fills (about pi 2^2 2 / 3 = 8.4 m^3); on the bank, an error.
   f.seed_x = px;
   f.seed_y = py;
-  const auto pit = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  const auto pit =
+      fill_reservoir(f, domain, domain.min, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
   EXPECT_NEAR(static_cast<double>(pit.points.size()) * dp * dp * dp, 8 * M_PI / 3, 2.5);
   f.seed_x = 500005;
   f.seed_y = 4000035;
-  const auto dry = fill_reservoir(f, domain, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
+  const auto dry =
+      fill_reservoir(f, domain, domain.min, dp, [&](const Vec3d& p) { return keeps_water_out(w, &m, p, dp); });
   EXPECT_TRUE(dry.points.empty());
   EXPECT_NE(dry.seed_problem.find("the seed point (500005.000, 4000035.000) is on dry land"), std::string::npos)
       << dry.seed_problem;

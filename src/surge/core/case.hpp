@@ -146,6 +146,22 @@ struct CouplingConfig {
   std::string force_sum = "exact";
 };
 
+// Hazard maps (sph/hazard_maps.hpp): accumulated at every gauge time on the lattice of the
+// first terrain wall's grid (every `coarsen`-th pixel centre), written with every output.
+struct RunUpLine {
+  std::string name;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0; // from, to
+  int line = 0;
+};
+struct HazardConfig {
+  bool enabled = false;        // the case has a `hazard` section
+  int coarsen = 1;             // map cell = this many terrain pixels
+  double arrival_height = 0.1; // arrival: first time the surface stands this far above still_level [m]
+  double still_level = 0;      // given, or the first reservoir's level
+  std::vector<RunUpLine> run_up;
+  int line = 0;
+};
+
 struct Case {
   std::string name = "case";
   std::string source; // file it came from
@@ -159,6 +175,7 @@ struct Case {
   std::vector<GaugeSpec> gauges;
   DemConfig dem;
   CouplingConfig coupling;
+  HazardConfig hazard;
 
   [[nodiscard]] bool coupled() const { return dem.active() && !fluid.empty(); }
   [[nodiscard]] double h() const { return sph.h_over_dp * dp; }

@@ -2,6 +2,7 @@
 
 #include "surge/geometry/particle_generators.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -13,18 +14,33 @@ bool keeps_water_out(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double
   return !w.box.contains(p, -0.5 * dp * (1 - 1e-6));
 }
 
-ReservoirFill fill_reservoir(const FluidRegion& f, const Box& domain, double dp,
+Vec3d lattice_origin(const Case& c) {
+  Vec3d o = c.domain.min;
+  for (const auto& f : c.fluid)
+    if (f.reservoir) {
+      o.z = f.level - std::ceil((f.level - c.domain.min.z) / c.dp - 1e-9) * c.dp;
+      break;
+    }
+  return o;
+}
+
+ReservoirFill fill_reservoir(const FluidRegion& f, const Box& domain, const Vec3d& origin, double dp,
                              const std::function<bool(const Vec3d&)>& blocked) {
   ReservoirFill out;
-  auto count = [&](double lo, double hi) { return static_cast<long>(std::floor((hi - lo) / dp + 1e-9)); };
-  const long nx = count(domain.min.x, domain.max.x), ny = count(domain.min.y, domain.max.y);
-  const long nz = count(domain.min.z, std::min(f.level, domain.max.z));
+  // Lattice indices [first, last) whose points lie in [lo, hi].
+  auto first = [&](double lo, double o) { return static_cast<long>(std::ceil((lo - o) / dp - 0.5 - 1e-9)); };
+  auto last = [&](double hi, double o) { return static_cast<long>(std::floor((hi - o) / dp - 0.5 + 1e-9)) + 1; };
+  const long ix = first(domain.min.x, origin.x), iy = first(domain.min.y, origin.y), iz = first(domain.min.z, origin.z);
+  const long nx = last(domain.max.x, origin.x) - ix, ny = last(domain.max.y, origin.y) - iy;
+  // The top layer's centre half a spacing below the level.
+  const long nz = last(std::min(f.level - 0.5 * dp, domain.max.z), origin.z) - iz;
   auto at = [&](long i, long j, long k) {
-    return Vec3d{domain.min.x + (static_cast<double>(i) + 0.5) * dp, domain.min.y + (static_cast<double>(j) + 0.5) * dp,
-                 domain.min.z + (static_cast<double>(k) + 0.5) * dp};
+    return Vec3d{origin.x + (static_cast<double>(ix + i) + 0.5) * dp,
+                 origin.y + (static_cast<double>(iy + j) + 0.5) * dp,
+                 origin.z + (static_cast<double>(iz + k) + 0.5) * dp};
   };
-  const long si = std::clamp(static_cast<long>(std::floor((f.seed_x - domain.min.x) / dp)), 0L, nx - 1);
-  const long sj = std::clamp(static_cast<long>(std::floor((f.seed_y - domain.min.y) / dp)), 0L, ny - 1);
+  const long si = std::clamp(static_cast<long>(std::floor((f.seed_x - origin.x) / dp)) - ix, 0L, std::max(nx - 1, 0L));
+  const long sj = std::clamp(static_cast<long>(std::floor((f.seed_y - origin.y) / dp)) - iy, 0L, std::max(ny - 1, 0L));
   if (nx < 1 || ny < 1 || nz < 1 || blocked(at(si, sj, nz - 1))) {
     char msg[200];
     std::snprintf(msg, sizeof msg,

@@ -23,10 +23,15 @@ struct ReservoirFill {
 // or less than dp/2 from it, outside a tank's interior or less than dp/2 inside it.
 bool keeps_water_out(const WallSpec& w, const Mesh* mesh, const Vec3d& p, double dp);
 
-// Lattice domain.min + (i + 1/2) dp; a point is water when its top lies at most at the
-// level (z + dp/2 <= level), `blocked` is false and it connects face to face to the seed
-// column's highest such point.
-ReservoirFill fill_reservoir(const FluidRegion& f, const Box& domain, double dp,
+// The corner of the lattice that walls from meshes and reservoirs share: the domain's
+// lowest corner, lowered (by less than dp) so that the first reservoir's level falls on a
+// face of the lattice and its water stands exactly to the level.
+Vec3d lattice_origin(const Case& c);
+
+// Lattice origin + (i + 1/2) dp inside the domain; a point is water when its top lies at
+// most at the level (z + dp/2 <= level), `blocked` is false and it connects face to face to
+// the seed column's highest such point.
+ReservoirFill fill_reservoir(const FluidRegion& f, const Box& domain, const Vec3d& origin, double dp,
                              const std::function<bool(const Vec3d&)>& blocked);
 
 } // namespace surge::geometry

@@ -66,9 +66,13 @@ TriangleIndex::TriangleIndex(const std::vector<Triangle>& tris) {
 }
 
 void TriangleIndex::cell_range(const Vec3d& lo, const Vec3d& hi, long (&c0)[3], long (&c1)[3]) const {
+  // Clamped as doubles: a query box may reach to +-1e300 (a vertical line), beyond long.
+  auto cell = [&](double v, int k) {
+    return static_cast<long>(std::clamp(std::floor((v - lo_[k]) / cell_), 0.0, static_cast<double>(n_[k] - 1)));
+  };
   for (int k = 0; k < 3; ++k) {
-    c0[k] = std::clamp(static_cast<long>(std::floor((lo[k] - lo_[k]) / cell_)), 0L, n_[k] - 1);
-    c1[k] = std::clamp(static_cast<long>(std::floor((hi[k] - lo_[k]) / cell_)), 0L, n_[k] - 1);
+    c0[k] = cell(lo[k], k);
+    c1[k] = cell(hi[k], k);
   }
 }
 

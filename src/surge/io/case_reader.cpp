@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 namespace surge::io {
 namespace {
@@ -541,6 +542,45 @@ void check_size(const Reader& r, const YAML::Node& root, const Case& c) {
 
 // What only the whole case can tell: gauges naming DEM walls, water gauges without water,
 // nothing to simulate, a speed of sound that cannot be derived.
+// [x, y] inside the domain's x-y extent.
+std::pair<double, double> parse_xy(const Reader& r, const YAML::Node& n, const std::string& key, const Case& c) {
+  if (!n.IsDefined() || !n.IsSequence() || n.size() != 2) r.fail(n, key, "expected [x, y]");
+  const double x = r.as<double>(n[0], key), y = r.as<double>(n[1], key);
+  if (x < c.domain.min.x || x > c.domain.max.x || y < c.domain.min.y || y > c.domain.max.y)
+    r.fail(n, key, "the point lies outside the domain");
+  return {x, y};
+}
+
+void parse_hazard(const Reader& r, const YAML::Node& hz, Case& c) {
+  r.check_keys(hz, "hazard", keys_under("hazard"));
+  HazardConfig& h = c.hazard;
+  h.enabled = true;
+  h.line = hz.Mark().line + 1;
+  read_fields(r, hz, "hazard", hazard_fields(), h);
+  if (std::none_of(c.walls.begin(), c.walls.end(), [](const WallSpec& w) { return w.terrain; }))
+    r.fail(hz, "hazard", "hazard maps lie on a terrain's grid: the case needs a wall with 'terrain'");
+  const auto res = std::find_if(c.fluid.begin(), c.fluid.end(), [](const FluidRegion& f) { return f.reservoir; });
+  if (hz["still_level"].IsDefined())
+    h.still_level = r.as<double>(hz["still_level"], "hazard.still_level");
+  else if (res != c.fluid.end())
+    h.still_level = res->level;
+  else
+    r.fail(hz, "hazard.still_level", "is required when no reservoir gives the level of the water at rest");
+  std::set<std::string> names;
+  for_each_item(r, hz, "hazard.run_up", "expected a list of lines, like [{name: far, from: [x, y], to: [x, y]}]",
+                [&](const YAML::Node& l, const std::string& path) {
+                  r.check_keys(l, path, keys_under("hazard.run_up[]"));
+                  RunUpLine ln;
+                  ln.line = l.Mark().line + 1;
+                  ln.name = r.require<std::string>(l, path, "name");
+                  if (ln.name.empty() || ln.name.find(',') != std::string::npos || !names.insert(ln.name).second)
+                    r.fail(l["name"], path + ".name", "must be a unique name without commas");
+                  std::tie(ln.x0, ln.y0) = parse_xy(r, l["from"], path + ".from", c);
+                  std::tie(ln.x1, ln.y1) = parse_xy(r, l["to"], path + ".to", c);
+                  h.run_up.push_back(ln);
+                });
+}
+
 void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
   for (std::size_t i = 0; i < c.gauges.size(); ++i) {
     const GaugeSpec& g = c.gauges[i];
@@ -603,6 +643,7 @@ Case parse(const YAML::Node& root, Reader& r) {
   check_size(r, root, c);
   if (const auto d = root["dem"]; d.IsDefined()) parse_dem(r, d, c);
   parse_section(r, root, "coupling", coupling_fields(), c.coupling);
+  if (const auto hz = root["hazard"]; hz.IsDefined()) parse_hazard(r, hz, c);
   check_whole(r, root, c);
   return c;
 }
@@ -834,6 +875,17 @@ std::string to_yaml(const Case& c) {
   e << YAML::EndSeq;
   if (c.dem.active()) write_dem(e, c.dem);
   write_section(e, "coupling", coupling_fields(), c.coupling);
+  if (c.hazard.enabled) {
+    e << YAML::Key << "hazard" << YAML::Value << YAML::BeginMap;
+    write_fields(e, hazard_fields(), c.hazard);
+    e << YAML::Key << "still_level" << YAML::Value << c.hazard.still_level << YAML::Key << "run_up" << YAML::Value
+      << YAML::BeginSeq;
+    for (const auto& l : c.hazard.run_up)
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << l.name << YAML::Key << "from"
+        << YAML::Value << YAML::Flow << YAML::BeginSeq << l.x0 << l.y0 << YAML::EndSeq << YAML::Key << "to"
+        << YAML::Value << YAML::Flow << YAML::BeginSeq << l.x1 << l.y1 << YAML::EndSeq << YAML::EndMap;
+    e << YAML::EndSeq << YAML::EndMap;
+  }
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
 }

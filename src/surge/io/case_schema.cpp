@@ -134,6 +134,20 @@ const std::vector<Field<SphConfig>>& sph_fields() {
   return f;
 }
 
+const std::vector<Field<HazardConfig>>& hazard_fields() {
+  using H = HazardConfig;
+  static const std::vector<Field<H>> f{
+      {"coarsen", &H::coarsen, "", at_least(1), {}, "map cell: this many pixels of the terrain's grid"},
+      {"arrival_height",
+       &H::arrival_height,
+       "m",
+       positive(),
+       {},
+       "arrival time: when the surface first stands this far above the still level"},
+  };
+  return f;
+}
+
 const std::vector<Field<CouplingConfig>>& coupling_fields() {
   using C = CouplingConfig;
   static const std::vector<Field<C>> f{
@@ -354,6 +368,14 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.packs[].radius", "number", "required (box, mesh)", "m", "> 0", "sphere radius"});
   k.push_back({"dem.packs[].material", "text", "required", "", "a material's name", "the spheres' material"});
   add(k, "dem.packs[].", pack_fields());
+  k.push_back({"hazard", "mapping", "", "", "",
+               "hazard maps on the terrain's grid (max elevation, depth, speed, arrival), run-up; in maps/"});
+  add(k, "hazard.", hazard_fields());
+  k.push_back({"hazard.still_level", "number", "the reservoir's level", "m", "", "the water's level at rest"});
+  k.push_back({"hazard.run_up", "list", "", "", "", "lines along which the highest wetted ground is reported"});
+  k.push_back({"hazard.run_up[].name", "text", "required", "", "unique, no commas", "the line's name"});
+  k.push_back({"hazard.run_up[].from", "[x, y]", "required", "m", "in the domain", "where the line starts"});
+  k.push_back({"hazard.run_up[].to", "[x, y]", "required", "m", "in the domain", "where it ends"});
   k.push_back({"coupling", "mapping", "", "", "", "SPH-DEM coupling (SPEC 4)"});
   add(k, "coupling.", coupling_fields());
   return k;

@@ -47,6 +47,7 @@ const std::vector<Field<TimeConfig>>& time_fields();
 const std::vector<Field<SphConfig>>& sph_fields();
 const std::vector<Field<CouplingConfig>>& coupling_fields();
 const std::vector<Field<DemConfig>>& dem_fields();
+const std::vector<Field<HazardConfig>>& hazard_fields();
 const std::vector<Field<DemMaterialSpec>>& material_fields();
 // The optional keys of list items.
 const std::vector<Field<FluidRegion>>& fluid_fields();

@@ -11,7 +11,7 @@
 namespace surge::io {
 namespace {
 
-constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '2'}; // 2: with the DEM state
+constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '3'}; // 2: with the DEM state; 3: hazard maps
 
 class Writer {
 public:
@@ -82,6 +82,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     if (use & particles::kCheckpoint) w.put_vec(v);
   });
   w.put_vec(std::vector<char>(c.dem_state.begin(), c.dem_state.end()));
+  w.put_vec(std::vector<char>(c.hazard_state.begin(), c.hazard_state.end()));
   write_file_atomic(path, w.bytes_);
 }
 
@@ -91,11 +92,19 @@ Checkpoint read_checkpoint(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string bytes = ss.str();
-  // Version 1 (before the DEM state was added) is read too: the same layout without it.
-  const bool v1 = bytes.size() >= sizeof magic && std::memcmp(bytes.data(), magic, sizeof magic - 1) == 0 &&
-                  bytes[sizeof magic - 1] == '1';
-  if (bytes.size() < sizeof magic || (!v1 && std::memcmp(bytes.data(), magic, sizeof magic) != 0))
+  // Versions 1 (before the DEM state) and 2 (before the hazard maps) are read too: the same
+  // layout without them.
+  const char version = bytes.size() >= sizeof magic && std::memcmp(bytes.data(), magic, sizeof magic - 1) == 0
+                           ? bytes[sizeof magic - 1]
+                           : '\0';
+  if (version < '1' || version > magic[sizeof magic - 1]) {
+    if (version > magic[sizeof magic - 1])
+      throw InputError(path, 0, "",
+                       std::string("checkpoint version ") + version +
+                           " is newer than this surge reads (3); restart it with the surge that wrote it");
     throw InputError(path, 0, "", "not a surge checkpoint");
+  }
+  const bool v1 = version == '1';
   Reader r(bytes, path);
   for (std::size_t k = 0; k < sizeof magic; ++k) (void)r.get<char>();
   if (r.get<std::uint32_t>() != sizeof(Real))
@@ -120,6 +129,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (!v1) {
     const auto dem = r.get_vec<char>();
     c.dem_state.assign(dem.begin(), dem.end());
+  }
+  if (version >= '3') {
+    const auto hz = r.get_vec<char>();
+    c.hazard_state.assign(hz.begin(), hz.end());
   }
   const auto n = p.pos.size();
   bool sizes_agree = r.done();

@@ -17,6 +17,7 @@ struct Checkpoint {
   long removed_domain = 0, removed_density = 0, non_finite = 0;
   particles::HostParticles particles; // with vel_prev / rho_prev
   std::string dem_state;              // coupled runs: DemSolver::save(), opaque; empty otherwise
+  std::string hazard_state;           // sph::HazardMaps::save(), opaque; empty without hazard maps
 };
 
 // Binary, little-endian, written atomically.

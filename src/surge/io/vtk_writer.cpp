@@ -113,6 +113,27 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
   b.write(path);
 }
 
+void write_image_vti(const std::string& path, long nx, long ny, double x0, double y0, double dx, double dy,
+                     const std::vector<std::string>& names, const std::vector<std::vector<double>>& arrays) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+    << "<ImageData WholeExtent=\"0 " << nx - 1 << " 0 " << ny - 1 << " 0 0\" Origin=\"" << x0 << " " << y0
+    << " 0\" Spacing=\"" << dx << " " << dy << " 1\">\n<Piece Extent=\"0 " << nx - 1 << " 0 " << ny - 1
+    << " 0 0\">\n<PointData>\n";
+  std::string blob;
+  for (std::size_t k = 0; k < arrays.size(); ++k) {
+    const std::size_t off = append_block(blob, arrays[k]);
+    x << "<DataArray type=\"Float64\" Name=\"" << names[k] << "\" format=\"appended\" offset=\"" << off << "\"/>\n";
+  }
+  x << "</PointData>\n</Piece>\n</ImageData>\n<AppendedData encoding=\"raw\">\n_";
+  std::string out = x.str();
+  out += blob;
+  out += "\n</AppendedData>\n</VTKFile>\n";
+  write_file_atomic(path, out);
+}
+
 void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin) {
   std::vector<double> pos;
   std::vector<float> vel, omega, radius;

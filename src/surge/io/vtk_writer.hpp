@@ -25,6 +25,11 @@ struct SphereFrame {
 // the intact bonds as lines.
 void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin);
 
+// A horizontal grid of nx x ny nodes (x0 + i dx, y0 + j dy, z = 0), node j * nx + i, as VTK
+// ImageData (.vti) with one Float64 point array per name (NaN where a value is missing).
+void write_image_vti(const std::string& path, long nx, long ny, double x0, double y0, double dx, double dy,
+                     const std::vector<std::string>& names, const std::vector<std::vector<double>>& arrays);
+
 // A ParaView collection (fluid.pvd): rewritten atomically after each new file.
 class PvdCollection {
 public:

@@ -4,6 +4,7 @@
 #include "surge/core/version.hpp"
 #include "surge/coupling/sph_dem_coupling.hpp"
 #include "surge/geometry/particle_generators.hpp"
+#include "surge/geometry/raster.hpp"
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/io/checkpoint.hpp"
@@ -14,6 +15,7 @@
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/wall_leaks.hpp"
 #include "surge/sph/gauges.hpp"
+#include "surge/sph/hazard_maps.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
 #include <chrono>
@@ -213,8 +215,8 @@ public:
   // fail on input happens before the output folder is touched.
   SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
       : c_(c), opt_(opt), init_(sph::build_initial_state(c)), cp_(coupled_parts(c, init_)),
-        solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr),
-        gauges_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
+        solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr), gauges_(c, init_),
+        hazard_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
         dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
         walls_pvd_((out_ / "walls.pvd").string()), fluid_pvd_((out_ / "fluid.pvd").string()),
         dt_min_(c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c)),
@@ -287,8 +289,8 @@ public:
   [[nodiscard]] std::vector<std::string> gauge_names() const override { return gauges_.names(); }
 
   std::vector<double> sample(double t) override {
-    (void)t;
     dist_.sync();
+    hazard_.sample(t, solver_, dist_.distribution());
     std::vector<dem::Sphere> sp;
     std::vector<Vec3> ff, fm;
     if (cp_) {
@@ -321,6 +323,7 @@ public:
         io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
         spheres_pvd_->add(t, std::string("particles/") + name);
       }
+      if (hazard_.enabled()) write_hazard();
       const LeakCount in_walls = leaks_.count(host_, init_.origin);
       tot_.leaks.add(in_walls, t);
       if (in_walls.count > 0 && !quiet)
@@ -347,6 +350,7 @@ public:
     k.non_finite = tot_.non_finite;
     dist_.gather(k.particles, true);
     if (cp_) k.dem_state = cp_->dem->save();
+    if (hazard_.enabled()) k.hazard_state = hazard_.save();
   }
 
   void restored(const std::vector<double>& frame_times) override {
@@ -394,8 +398,32 @@ private:
     return cp;
   }
 
+  // maps/: the hazard maps as GeoTIFFs in the terrain's coordinate system, all of them and
+  // the ground in one VTK image, and the run-up per line.
+  void write_hazard() {
+    const auto dir = out_ / "maps";
+    std::filesystem::create_directories(dir);
+    const auto maps = hazard_.maps();
+    const auto names = sph::HazardMaps::map_names();
+    const auto& lat = hazard_.lattice();
+    for (std::size_t k = 0; k < maps.size(); ++k)
+      geometry::write_geotiff((dir / (names[k] + ".tif")).string(), lat, {maps[k]}, {names[k]});
+    auto all = maps;
+    auto all_names = names;
+    all.push_back(lat.v);
+    all_names.emplace_back("ground");
+    io::write_image_vti((dir / "hazard.vti").string(), lat.nx, lat.ny, lat.x0, lat.y0, lat.dx, lat.dy, all_names, all);
+    io::write_file_atomic((dir / "runup.csv").string(), hazard_.run_up_csv());
+  }
+
   void check_restart(const io::Checkpoint& ck) {
     const std::string path = (out_ / "checkpoint.bin").string();
+    if (ck.hazard_state.empty() == hazard_.enabled())
+      throw InputError(path, 0, "hazard",
+                       std::string(hazard_.enabled() ? "the case has hazard maps but the checkpoint holds none"
+                                                     : "the checkpoint holds hazard maps but the case has none") +
+                           "; restart with the case.yaml of that run");
+    if (hazard_.enabled()) hazard_.restore(ck.hazard_state, path);
     if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges_.names().size() + 1)
       throw InputError(path, 0, "gauges",
                        "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
@@ -420,6 +448,7 @@ private:
   const particles::HostParticles none_; // a distributed run's solver starts empty: each process uploads its slab
   sph::WcsphSolver solver_;
   sph::Gauges gauges_;
+  sph::HazardMaps hazard_;
   ExtraCounts extra_;
   DistributedRun dist_; // built with MPI: slabs of particles, one per process
   std::filesystem::path out_;

@@ -33,8 +33,9 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   origin_z_ = o.z;
   std::vector<std::unique_ptr<geometry::Mesh>> meshes;
   for (const auto& w : c.walls)
-    meshes.push_back(w.is_mesh && needs_bed(c) ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
-                                               : nullptr);
+    meshes.push_back(w.is_mesh && needs_bed(c)
+                         ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
+                         : nullptr);
   for (const auto& g : c.gauges) {
     Probe pr{g, static_cast<int>(points_host_.size()), 0, 0, 0};
     names_.push_back(g.name);
@@ -65,8 +66,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   sums_.resize(points_host_.size());
 }
 
-std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value,
-                                   const Distribution& dist) {
+std::vector<PointSums> Gauges::point_sums(WcsphSolver& solver, const Distribution& dist) {
   solver.refresh();
   auto p = solver.view();
   const auto g = solver.grid_view();
@@ -82,13 +82,40 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
       if (!dist.owns(points_host_[k])) sums[k] = PointSums{};
     dist.sum(reinterpret_cast<Real*>(sums.data()), 6 * sums.size());
   }
+  return sums;
+}
 
+std::vector<Gauges::Column> Gauges::columns(WcsphSolver& solver, const Distribution& dist) {
+  const std::vector<PointSums> sums = point_sums(solver, dist);
+  std::vector<Column> out(probes_.size());
+  for (std::size_t g = 0; g < probes_.size(); ++g) {
+    const Probe& pr = probes_[g];
+    if (pr.spec.type != GaugeType::Height) continue;
+    const Top top = column_top(pr, sums);
+    Column& col = out[g];
+    col.bed = static_cast<double>(points_host_[pr.first_sample].z) + origin_z_;
+    col.top = top.z + origin_z_;
+    double w = 0;
+    Vec3d wv{};
+    for (int k = 0; k <= top.last; ++k) {
+      w += static_cast<double>(sums[pr.first_sample + k].vw);
+      wv += Vec3d(sums[pr.first_sample + k].vwv);
+      col.fluid = std::max(col.fluid, static_cast<double>(sums[pr.first_sample + k].vw));
+    }
+    if (w > 0) col.velocity = wv * (1.0 / w);
+  }
+  return out;
+}
+
+std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value,
+                                   const Distribution& dist) {
+  const std::vector<PointSums> sums = point_sums(solver, dist);
   std::vector<double> values;
   for (const auto& pr : probes_) {
     const auto& spec = pr.spec;
     double v = 0;
     if (spec.type == GaugeType::Height) {
-      v = (spec.surface == "highest" ? highest_wet(pr, sums) : column_top(pr, sums)) + origin_z_;
+      v = (spec.surface == "highest" ? highest_wet(pr, sums) : column_top(pr, sums).z) + origin_z_;
     } else if (spec.type == GaugeType::Pressure || spec.type == GaugeType::Velocity) {
       const PointSums& s = sums[pr.first_sample];
       // Shepard normalisation; a point with too little fluid around it reads 0.
@@ -136,7 +163,7 @@ Vec3d Gauges::wall_force(WcsphSolver& solver, const Probe& pr, const Distributio
 // the face itself comes out anywhere from 0.45 to 0.55 (a coarse wall, a sloping mesh),
 // and water on the bed stands off it by up to 1.5 spacings (the lattice next to a slope,
 // the dynamic boundary's gap). The column starts at the highest filled sample there.
-double Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) const {
+Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) const {
   const auto filled = [&](int k) {
     const PointSums& s = sums[pr.first_sample + k];
     return static_cast<double>(s.vw + s.vw_solid);
@@ -145,12 +172,12 @@ double Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) c
   const int near_face = 6; // samples within 1.5 dp of the face (dz = dp / 4)
   int k = std::min(pr.n_samples - 1, near_face);
   while (k >= 0 && filled(k) < 0.5) --k;
-  if (k < 0) return z(0); // dry
+  if (k < 0) return {z(0), -1}; // dry
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
-    if (f1 < 0.5) return crossing(z(k), dz_, f0, f1);
+    if (f1 < 0.5) return {crossing(z(k), dz_, f0, f1), k};
   }
-  return z(pr.n_samples - 1);
+  return {z(pr.n_samples - 1), pr.n_samples - 1};
 }
 
 // The highest z where the fluid fraction reaches 0.5, interpolated between samples: the

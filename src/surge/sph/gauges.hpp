@@ -47,6 +47,16 @@ public:
   // particle's force by its owner: the values are those of one process, bit for bit.
   std::vector<double> sample(WcsphSolver& solver, const std::function<double(const GaugeSpec&)>& sphere_value = {},
                              const Distribution& dist = {});
+  // The water column of each height gauge, in gauge order (other gauges read zeros): its
+  // bed and top (absolute z; top == bed when dry, as the gauge reads) and the velocity
+  // averaged over the column's depth (Shepard sums of its samples up to the top). The same
+  // bits on any number of processes, like sample.
+  struct Column {
+    double bed = 0, top = 0;
+    Vec3d velocity{};
+    double fluid = 0; // the highest fluid fraction (without walls) of its samples up to the top
+  };
+  std::vector<Column> columns(WcsphSolver& solver, const Distribution& dist = {});
 
 private:
   struct Probe {
@@ -63,7 +73,14 @@ private:
   [[nodiscard]] Vec3d wall_force(WcsphSolver& solver, const Probe& pr, const Distribution& dist);
   double dz_ = 0;
   double origin_z_ = 0;
-  [[nodiscard]] double column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
+  // The kernel sums at every sample point, combined across processes.
+  std::vector<PointSums> point_sums(WcsphSolver& solver, const Distribution& dist);
+  // column_top's surface and the last sample below it (-1: dry).
+  struct Top {
+    double z;
+    int last;
+  };
+  [[nodiscard]] Top column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
   [[nodiscard]] double highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const;
 };
 

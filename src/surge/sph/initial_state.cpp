@@ -48,6 +48,7 @@ InitialState build_initial_state(const Case& c) {
   const TaitEos eos(static_cast<Real>(rho0), static_cast<Real>(c.sound_speed()));
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
+  const Vec3d lattice = geometry::lattice_origin(c); // the domain's corner without reservoirs
   auto blocked = [&](const Vec3d& p) {
     for (std::size_t w = 0; w < c.walls.size(); ++w)
       if (geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp)) return true;
@@ -56,7 +57,7 @@ InitialState build_initial_state(const Case& c) {
   for (const auto& f : c.fluid) {
     std::vector<Vec3d> pts;
     if (f.reservoir) {
-      auto fill = geometry::fill_reservoir(f, c.domain, c.dp, [&](const Vec3d& p) {
+      auto fill = geometry::fill_reservoir(f, c.domain, lattice, c.dp, [&](const Vec3d& p) {
         for (std::size_t w = 0; w < c.walls.size(); ++w)
           if (geometry::keeps_water_out(c.walls[w], meshes[w].get(), p, c.dp)) return true;
         return false;
@@ -90,9 +91,8 @@ InitialState build_initial_state(const Case& c) {
     // A terrain's layers under the domain only: its hills may rise far above it.
     Box under = c.domain;
     under.min.z -= layers * c.dp;
-    const auto pts = ws.is_mesh
-                         ? geometry::mesh_wall(*meshes[w], c.domain.min, c.dp, layers, ws.terrain ? &under : nullptr)
-                         : geometry::box_wall(ws, c.dp, layers, fit);
+    const auto pts = ws.is_mesh ? geometry::mesh_wall(*meshes[w], lattice, c.dp, layers, ws.terrain ? &under : nullptr)
+                                : geometry::box_wall(ws, c.dp, layers, fit);
     const std::uint32_t first = next_id;
     for (const auto& p : pts) {
       s.particles.push(local(p), Vec3{}, static_cast<Real>(rho0), Kind::Wall, next_id++);
