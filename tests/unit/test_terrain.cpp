@@ -5,6 +5,7 @@
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/geometry/raster.hpp"
 #include "surge/geometry/reservoir.hpp"
+#include "surge/geometry/slide_body.hpp"
 #include "surge/geometry/terrain.hpp"
 
 #include <gtest/gtest.h>
@@ -185,4 +186,43 @@ TEST(Reservoir, FillsTheConnectedLakeToItsLevel) {
   EXPECT_TRUE(dry.points.empty());
   EXPECT_NE(dry.seed_problem.find("the seed point (500005.000, 4000035.000) is on dry land"), std::string::npos)
       << dry.seed_problem;
+}
+
+TEST(SlideBody, VolumeAndSpheresBetweenTheSurfaces) {
+  // Top: a plane z = 10 + 0.3 x; bottom: 4 m below it on the nodes i, j in [5, 25], on it
+  // elsewhere. The thickness is linear on each triangle, so the node sum is its exact
+  // integral: 21 x 21 nodes x 4 m x 1 m^2 = 1764 m^3.
+  Raster top;
+  top.nx = top.ny = 31;
+  top.dx = top.dy = 1;
+  top.v.resize(31 * 31);
+  for (long j = 0; j < 31; ++j)
+    for (long i = 0; i < 31; ++i) top.at(i, j) = 10 + 0.3 * top.x(i);
+  Raster bottom = top;
+  for (long j = 5; j <= 25; ++j)
+    for (long i = 5; i <= 25; ++i) bottom.at(i, j) -= 4;
+  const double r = 0.25;
+  const auto body = fill_slide(top, bottom, r, {0, 0, 0}, "bottom.tif");
+  EXPECT_NEAR(body.volume, 1764.0, 1e-9);
+  // Each column holds the lattice levels between the surfaces: the cells' volume is the
+  // body's to the rounding of each column (within 2 % here).
+  const double cells = static_cast<double>(body.spheres.size()) * 8 * r * r * r;
+  EXPECT_NEAR(cells / body.volume, 1.0, 0.02) << body.spheres.size() << " spheres";
+  for (const auto& s : body.spheres)
+    for (int a = 0; a < 16; ++a) {
+      const double phi = a * M_PI / 8, x = s.centre.x + r * std::cos(phi), y = s.centre.y + r * std::sin(phi);
+      ASSERT_GE(s.centre.z - r, surface_height(bottom, x, y) - 1e-9) << "a sphere cuts the sliding surface";
+    }
+  // Crossed surfaces: the error names the file, the nodes, their area and extent.
+  bottom.at(2, 3) += 1;
+  bottom.at(3, 3) += 1;
+  try {
+    (void)fill_slide(top, bottom, r, {0, 0, 0}, "bottom.tif");
+    FAIL() << "crossed surfaces accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bottom.tif: the sliding surface lies above the pre-failure surface at 2 "
+                                         "nodes (2.0 m^2) within x [2.000, 3.000], y [3.000, 3.000]"),
+              std::string::npos)
+        << e.what();
+  }
 }

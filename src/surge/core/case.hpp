@@ -110,7 +110,10 @@ struct DemPackSpec {
   double radius = 0;
   double jitter = 0; // lattice: random offset of each sphere, as a fraction of its radius
   std::string csv;   // x, y, z, r per line (resolved path)
-  int material = 0;  // index into DemConfig::materials
+  // A slide body: between a pre-failure surface (top) and a sliding surface (bottom), two
+  // elevation grids (resolved paths; geometry/slide_body.hpp).
+  std::string top_path, bottom_path;
+  int material = 0; // index into DemConfig::materials
   Vec3d velocity{};
   bool fixed = false; // held in place (forces on it are still computed)
   int line = 0;

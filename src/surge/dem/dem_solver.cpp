@@ -137,10 +137,14 @@ struct WallCandidate {
   Real dist;
   bool face;
 };
-SURGE_HD inline int wall_contacts(const WallTriangle* tris, int n_tris, const Vec3& x, Real r, WallCandidate* out) {
+SURGE_HD inline int wall_contacts(const WallTriangle* tris, const TriangleGridView& grid, const Vec3& x, Real r,
+                                  WallCandidate* out) {
   WallCandidate cand[max_wall_candidates];
   int nc = 0;
-  for (int t = 0; t < n_tris && nc < max_wall_candidates; ++t) {
+  std::uint32_t begin = 0, end = 0;
+  grid.range(x, begin, end);
+  for (std::uint32_t k = begin; k < end && nc < max_wall_candidates; ++k) {
+    const int t = static_cast<int>(grid.items[k]);
     const WallTriangle& tr = tris[t];
     const auto cp = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, x);
     const Real d = norm(x - cp.point);
@@ -268,7 +272,7 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
 // B-side ones negated, read at the A side's slot), then its wall contacts.
 template <class L>
 void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, int n_planes, const WallTriangle* tris,
-                 int n_tris, Real dt) {
+                 TriangleGridView tri_grid, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         int used = 0;
@@ -317,9 +321,9 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
           const Real dist = dot(xi - pl.point, pl.normal);
           if (dist < ri) wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material);
         }
-        if (n_tris > 0) {
+        if (tri_grid.start) {
           WallCandidate touched[max_wall_candidates];
-          const int nt = wall_contacts(tris, n_tris, xi, ri, touched);
+          const int nt = wall_contacts(tris, tri_grid, xi, ri, touched);
           for (int k = 0; k < nt; ++k)
             wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
                  triangle_partner | static_cast<std::uint32_t>(touched[k].tri), tris[touched[k].tri].material);
@@ -482,6 +486,77 @@ void DemSolver::set_wall_triangles(const std::vector<WallTriangle>& t) {
       throw std::invalid_argument("wall triangle with an unknown material");
   n_triangles_ = static_cast<int>(t.size());
   par::upload(triangles_, t);
+  triangles_host_ = t;
+  tri_grid_radius_ = -1;
+  tri_grid_ = {};
+}
+
+void DemSolver::build_triangle_grid() {
+  // Cells about a triangle or a sphere wide; no more than 8 per triangle.
+  const Real r = max_radius_;
+  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  Real extent = 2 * r;
+  std::vector<Vec3> blo, bhi;
+  for (const auto& t : triangles_host_) {
+    Vec3 a = t.a, b = t.a;
+    for (const Vec3& p : {t.b, t.c})
+      for (int k = 0; k < 3; ++k) {
+        a[k] = std::min(a[k], p[k]);
+        b[k] = std::max(b[k], p[k]);
+      }
+    for (int k = 0; k < 3; ++k) {
+      a[k] -= r;
+      b[k] += r;
+      lo[k] = std::min(lo[k], a[k]);
+      hi[k] = std::max(hi[k], b[k]);
+      extent = std::max(extent, b[k] - a[k] - 2 * r);
+    }
+    blo.push_back(a);
+    bhi.push_back(b);
+  }
+  Real cell = extent;
+  const double max_cells = 8.0 * static_cast<double>(triangles_host_.size()) + 64;
+  int n[3];
+  for (;;) {
+    double cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      n[k] = static_cast<int>((hi[k] - lo[k]) / cell) + 1;
+      cells *= n[k];
+    }
+    if (cells <= max_cells) break;
+    cell *= Real(1.5);
+  }
+  const auto n_cells = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  std::vector<std::uint32_t> count(n_cells + 1, 0), start(n_cells + 1, 0), items;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      for (std::size_t c = 0; c < n_cells; ++c) start[c + 1] = start[c] + count[c];
+      items.resize(start[n_cells]);
+      std::fill(count.begin(), count.end(), 0);
+    }
+    for (std::size_t t = 0; t < blo.size(); ++t) {
+      int c0[3], c1[3];
+      for (int k = 0; k < 3; ++k) {
+        c0[k] = std::clamp(static_cast<int>((blo[t][k] - lo[k]) / cell), 0, n[k] - 1);
+        c1[k] = std::clamp(static_cast<int>((bhi[t][k] - lo[k]) / cell), 0, n[k] - 1);
+      }
+      for (int z = c0[2]; z <= c1[2]; ++z)
+        for (int y = c0[1]; y <= c1[1]; ++y)
+          for (int x = c0[0]; x <= c1[0]; ++x) {
+            const auto c = static_cast<std::size_t>((z * n[1] + y) * n[0] + x);
+            if (pass == 1) items[start[c] + count[c]] = static_cast<std::uint32_t>(t);
+            ++count[c];
+          }
+    }
+  }
+  par::upload(tri_start_, start);
+  par::upload(tri_items_, items);
+  tri_grid_.lo = lo;
+  tri_grid_.inv_cell = 1 / cell;
+  for (int k = 0; k < 3; ++k) tri_grid_.n[k] = n[k];
+  tri_grid_.start = tri_start_.data();
+  tri_grid_.items = tri_items_.data();
+  tri_grid_radius_ = r;
 }
 
 void DemSolver::set_spheres(const std::vector<Sphere>& s) {
@@ -601,6 +676,7 @@ bool DemSolver::list_stale() {
 }
 
 void DemSolver::step(Real dt) {
+  if (n_triangles_ > 0 && tri_grid_radius_ < max_radius_) build_triangle_grid();
   {
     const auto t = par::timed(par::Phase::DemSort);
     if (list_stale()) rebuild_list();
@@ -611,7 +687,7 @@ void DemSolver::step(Real dt) {
     with_contact_law(law_index_, [&](auto law) {
       using L = decltype(law);
       detail::pair_pass<L>(v, materials_.data(), dt);
-      detail::sphere_pass<L>(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), n_triangles_, dt);
+      detail::sphere_pass<L>(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_, dt);
     });
   }
   {

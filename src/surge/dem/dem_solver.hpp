@@ -45,6 +45,30 @@ struct WallTriangle {
   int material = 0;
 };
 
+// The wall triangles a sphere may touch, by the cell of its centre: each cell lists (in
+// ascending order) the triangles whose bounding box, grown by the largest sphere radius,
+// meets it. Plain view for the kernels.
+struct TriangleGridView {
+  Vec3 lo{};
+  Real inv_cell = 0;
+  int n[3] = {0, 0, 0};
+  const std::uint32_t* start = nullptr; // per cell, into items (CSR)
+  const std::uint32_t* items = nullptr;
+  // The range [begin, end) of items for a point; empty outside the grid.
+  SURGE_HD void range(const Vec3& x, std::uint32_t& begin, std::uint32_t& end) const {
+    begin = end = 0;
+    int c[3];
+    for (int k = 0; k < 3; ++k) {
+      const Real u = (x[k] - lo[k]) * inv_cell;
+      if (!(u >= 0) || !(u < static_cast<Real>(n[k]))) return;
+      c[k] = static_cast<int>(u);
+    }
+    const int cell = (c[2] * n[1] + c[1]) * n[0] + c[0];
+    begin = start[cell];
+    end = start[cell + 1];
+  }
+};
+
 struct Sphere {
   Vec3 pos{}, vel{}, omega{};
   Real radius = 0.01f;
@@ -188,6 +212,12 @@ private:
   int n_planes_ = 0;
   par::Buffer<WallTriangle> triangles_;
   int n_triangles_ = 0;
+  // The triangles by cell (TriangleGridView), built for spheres up to tri_grid_radius_.
+  std::vector<WallTriangle> triangles_host_;
+  par::Buffer<std::uint32_t> tri_start_, tri_items_;
+  TriangleGridView tri_grid_{};
+  Real tri_grid_radius_ = -1;
+  void build_triangle_grid();
   Vec3 gravity_{};
   Real local_damping_ = 0;
   int law_index_ = 0; // the contact law, an index into ContactLaws

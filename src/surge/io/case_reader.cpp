@@ -305,9 +305,22 @@ DemPackSpec parse_pack(const Reader& r, const YAML::Node& pk, const std::string&
   ps.line = pk.Mark().line + 1;
   ps.material = material_of(r, pk, path, c.dem);
   read_fields(r, pk, path, pack_fields(), ps);
-  const int regions =
-      (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) + (pk["csv"].IsDefined() ? 1 : 0);
-  if (regions != 1) r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL) or 'csv'");
+  const int regions = (pk["box"].IsDefined() ? 1 : 0) + (pk["mesh"].IsDefined() ? 1 : 0) +
+                      (pk["csv"].IsDefined() ? 1 : 0) + (pk["between"].IsDefined() ? 1 : 0);
+  if (regions != 1)
+    r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL), 'between' (two grids) or 'csv'");
+  if (const auto bt = pk["between"]; bt.IsDefined()) {
+    r.check_keys(bt, path + ".between", {"top", "bottom"});
+    if (ps.random_count > 0 || ps.jitter > 0 || ps.settle > 0)
+      r.fail(pk, path, "'random', 'jitter' and 'settle' apply to box and mesh packs, not to a slide between grids");
+    if (!bt["top"].IsDefined() || !bt["bottom"].IsDefined())
+      r.fail(bt, path + ".between", "needs 'top' (the pre-failure surface) and 'bottom' (the sliding surface)");
+    ps.top_path = resolve_file(r, bt["top"], path + ".between.top", "elevation grid ");
+    ps.bottom_path = resolve_file(r, bt["bottom"], path + ".between.bottom", "elevation grid ");
+    ps.radius = r.require<double>(pk, path, "radius");
+    if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+    return ps;
+  }
   if (pk["csv"].IsDefined()) {
     if (ps.random_count > 0 || ps.jitter > 0)
       r.fail(pk, path, "'random' and 'jitter' apply to box and mesh packs, not to a CSV list");
@@ -824,7 +837,10 @@ void write_dem(YAML::Emitter& e, const DemConfig& d) {
     if (pk.from_csv) {
       e << YAML::Key << "csv" << YAML::Value << pk.csv;
     } else {
-      if (pk.mesh_path.empty()) {
+      if (!pk.bottom_path.empty()) {
+        e << YAML::Key << "between" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "top" << YAML::Value
+          << pk.top_path << YAML::Key << "bottom" << YAML::Value << pk.bottom_path << YAML::EndMap;
+      } else if (pk.mesh_path.empty()) {
         e << YAML::Key << "box" << YAML::Value;
         write_box(e, pk.box);
       } else {

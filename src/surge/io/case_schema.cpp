@@ -365,7 +365,10 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.packs[].box", "{min, max}", "", "m", "inside the domain", "a lattice (or random pack) in a box"});
   k.push_back({"dem.packs[].mesh", "file", "", "", "closed STL", "a pack inside a closed mesh"});
   k.push_back({"dem.packs[].csv", "file", "", "", "x, y, z, r per line", "spheres listed in a file"});
-  k.push_back({"dem.packs[].radius", "number", "required (box, mesh)", "m", "> 0", "sphere radius"});
+  k.push_back({"dem.packs[].between", "{top, bottom}", "", "", "", "a slide body between two elevation grids"});
+  k.push_back({"dem.packs[].between.top", "file", "required", "", "a raster GDAL reads", "the pre-failure surface"});
+  k.push_back({"dem.packs[].between.bottom", "file", "required", "", "below top", "the sliding surface"});
+  k.push_back({"dem.packs[].radius", "number", "required (box, mesh, between)", "m", "> 0", "sphere radius"});
   k.push_back({"dem.packs[].material", "text", "required", "", "a material's name", "the spheres' material"});
   add(k, "dem.packs[].", pack_fields());
   k.push_back({"hazard", "mapping", "", "", "",

@@ -1,6 +1,7 @@
 #include "surge/sim/dem_setup.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/geometry/slide_body.hpp"
 #include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/stl_mesh.hpp"
 #include "surge/geometry/terrain.hpp"
@@ -92,6 +93,30 @@ DemSetup dem_setup(const Case& c) {
     std::vector<geometry::SphereSpec> list;
     if (pk.from_csv) {
       list = geometry::read_sphere_csv(pk.csv);
+    } else if (!pk.bottom_path.empty()) {
+      const auto body = geometry::fill_slide(geometry::read_terrain(pk.top_path, c.domain),
+                                             geometry::read_terrain(pk.bottom_path, c.domain), pk.radius, c.domain.min,
+                                             pk.bottom_path);
+      if (body.spheres.empty())
+        throw InputError(c.source, pk.line, "dem.packs.between",
+                         "no sphere of this radius fits between the surfaces; use smaller spheres");
+      // The walls must be the ground beneath the slide: spheres under a terrain wall (the
+      // pre-failure ground given as the wall) would be thrown out of it at the first step.
+      for (const auto& w : c.dem.walls) {
+        if (!w.terrain) continue;
+        const auto ground = geometry::read_terrain(w.mesh_path, c.domain);
+        long under = 0;
+        for (const auto& sp : body.spheres)
+          under += sp.centre.z < geometry::surface_height(ground, sp.centre.x, sp.centre.y) ? 1 : 0;
+        if (under > 0)
+          throw InputError(c.source, pk.line, "dem.packs.between",
+                           std::to_string(under) + " of the slide's spheres lie under the ground of the DEM wall '" +
+                               w.mesh_path +
+                               "': the walls must be the ground beneath the slide (its sliding surface), not the "
+                               "pre-failure ground");
+      }
+      s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius});
+      list = body.spheres;
     } else {
       geometry::PackRegion region{pk.box, nullptr};
       geometry::Mesh mesh;
@@ -131,6 +156,23 @@ DemSetup dem_setup(const Case& c) {
   if (s.spheres.empty())
     throw InputError(c.source, 0, "dem.packs", "the packs hold no sphere (box smaller than a sphere?)");
   return s;
+}
+
+void print_slides(const Case& c, const DemSetup& s) {
+  for (const auto& sl : s.slides) {
+    const auto& pk = c.dem.packs[static_cast<std::size_t>(sl.pack)];
+    const double n = static_cast<double>(sl.spheres), d = 2 * sl.radius;
+    const double rho = c.dem.materials[static_cast<std::size_t>(pk.material)].density;
+    const double cells = n * d * d * d, solid = n * M_PI / 6 * d * d * d;
+    std::printf(
+        "slide       pack %d (line %d): %.6g m^3 between the grids; %zu spheres of D = %g m whose lattice cells "
+        "hold %.6g m^3 (%.1f %%); mass %.6g kg (spheres of %g kg/m^3, %.3g of the body's volume)\n",
+        sl.pack, pk.line, sl.volume, sl.spheres, d, cells, 100 * cells / sl.volume, solid * rho, rho,
+        solid / sl.volume);
+    if (c.dp > 0 && !c.fluid.empty())
+      std::printf("            dp/D = 1/%.3g (the paper's guidance for dense assemblies: dp <= D/6, D/8 better)\n",
+                  d / c.dp);
+  }
 }
 
 std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {

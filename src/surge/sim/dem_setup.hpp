@@ -21,6 +21,14 @@ struct DemSetup {
   Vec3d origin{};
   // Per case DEM wall: {plane index, -1} or {-1, mesh index}.
   std::vector<std::pair<int, int>> wall_index;
+  // Slide bodies between grids (surge check): the pack, the body's volume, its spheres.
+  struct SlideReport {
+    int pack;
+    double volume;
+    std::size_t spheres;
+    double radius;
+  };
+  std::vector<SlideReport> slides;
 };
 
 // Everything that can fail on input (meshes, sphere lists) fails here.
@@ -30,6 +38,9 @@ dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s);
 // guidance allows (dem.dt_factor above 0.2: SPEC 3's 0.1-0.2 for the linear spring, 20 %
 // of the Rayleigh time for Hertz-Mindlin), with that step; empty when it is not.
 std::string dem_step_warning(const Case& c, const dem::DemSolver& solver);
+// surge check's lines on the slide bodies between grids: volume, spheres, the volume their
+// lattice cells hold, mass.
+void print_slides(const Case& c, const DemSetup& s);
 // The spheres' current state, by id, for write_spheres_vtp.
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 // Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.

@@ -41,6 +41,7 @@ int check_dem(const Case& c) {
                 solver.bond_touching(static_cast<Real>(c.dem.bond_gap)), c.dem.bond_gap);
   const char* scale = "";
   dem::with_contact_law(s.contact_law, [&](auto law) { scale = decltype(law)::time_scale_name; });
+  print_slides(c, s);
   std::printf("contact     %s\n", c.dem.contact.c_str());
   std::printf("time step   DEM dt = %.3g s (dt_factor %g x the smallest %s), about %.3g steps to t = %g s\n", dt,
               c.dem.dt_factor, scale, steps, c.time.end);

@@ -184,6 +184,7 @@ int check(const Case& c) {
                 static_cast<double>(cp->coupling->dt_dem()), c.dem.dt_factor,
                 std::ceil(dt0 / static_cast<double>(cp->coupling->dt_dem())));
     if (const std::string w = dem_step_warning(c, *cp->dem); !w.empty()) std::printf("warning     %s\n", w.c_str());
+    print_slides(c, cp->setup);
   }
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
@@ -192,7 +193,7 @@ int check(const Case& c) {
   {
     const Vec3 lo = init.fluid_lo, hi = init.fluid_hi;
     const Vec3d a = Vec3d(lo) + init.origin, b = Vec3d(hi) + init.origin;
-    std::printf("removal     fluid leaving x [%.4g, %.4g], y [%.4g, %.4g], z [%.4g, %.4g] m is removed (the domain, "
+    std::printf("removal     fluid leaving x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m is removed (the domain, "
                 "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
                 "in_walls)\n",
                 a.x, b.x, a.y, b.y, a.z, b.z);

@@ -103,6 +103,14 @@ std::vector<Gauges::Column> Gauges::columns(WcsphSolver& solver, const Distribut
       col.fluid = std::max(col.fluid, static_cast<double>(sums[pr.first_sample + k].vw));
     }
     if (w > 0) col.velocity = wv * (1.0 / w);
+    col.water_top = col.bed;
+    for (int k = top.last; k >= 0; --k) {
+      const double f = sums[pr.first_sample + k].vw;
+      if (f < 0.5) continue;
+      const double z = static_cast<double>(points_host_[pr.first_sample + k].z) + origin_z_;
+      col.water_top = k == top.last ? col.top : crossing(z, dz_, f, sums[pr.first_sample + k + 1].vw);
+      break;
+    }
   }
   return out;
 }

@@ -55,6 +55,10 @@ public:
     double bed = 0, top = 0;
     Vec3d velocity{};
     double fluid = 0; // the highest fluid fraction (without walls) of its samples up to the top
+    // The water's own surface in the column: where the fluid fraction last falls below 0.5
+    // going up to the top (so a slide's spheres standing above the water are not read as
+    // water); the bed when no sample reaches 0.5.
+    double water_top = 0;
   };
   std::vector<Column> columns(WcsphSolver& solver, const Distribution& dist = {});
 

@@ -70,18 +70,20 @@ void HazardMaps::sample(double t, WcsphSolver& solver, const Distribution& dist)
   if (!enabled()) return;
   const auto col = cols_->columns(solver, dist);
   auto raise = [](double& m, double v) { m = std::isnan(m) ? v : std::max(m, v); };
-  // A column is wet when water, not wall, fills part of it: on a dry slope the walls beside
-  // the line fill it half a spacing and more above the bed (the gauge's column then has a
-  // depth), but its fluid fraction is 0; a film of one layer of particles reads 0.4-0.6.
+  // A run-up point is wet when water, not wall, fills part of its column: on a dry slope
+  // the walls beside the line fill it half a spacing and more above the bed (the gauge's
+  // column then has a depth), but its fluid fraction is 0; a film of one layer of particles
+  // reads 0.4-0.6. A map cell is wet where the fluid fraction reaches 0.5: its surface is
+  // the water's (Column::water_top), not a slide's above it.
   auto wet = [](const Gauges::Column& cl) { return cl.fluid >= 0.3 && cl.top > cl.bed; };
   for (std::size_t k = 0; k < n_cells_; ++k) {
-    const double depth = col[k].top - col[k].bed;
-    if (!wet(col[k])) continue;
-    raise(max_eta_[k], col[k].top);
+    const double eta = col[k].water_top, depth = eta - col[k].bed;
+    if (!(col[k].fluid >= 0.5 && depth > 0)) continue;
+    raise(max_eta_[k], eta);
     raise(max_depth_[k], depth);
     const Vec3d v = col[k].velocity;
     raise(max_speed_[k], std::sqrt(v.x * v.x + v.y * v.y));
-    if (std::isnan(arrival_[k]) && col[k].top > cfg_.still_level + cfg_.arrival_height) arrival_[k] = t;
+    if (std::isnan(arrival_[k]) && eta > cfg_.still_level + cfg_.arrival_height) arrival_[k] = t;
   }
   for (std::size_t p = 0; p < run_up_points_.size(); ++p) {
     const auto& cl = col[n_cells_ + p];
