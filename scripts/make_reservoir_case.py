@@ -1,4 +1,4 @@
-#!/ usr / bin / env python3
+#!/usr/bin/env python3
 """Writes a synthetic site for cases/reservoir/: a winding valley dammed into a reservoir,
 with a slide on one flank, as GeoTIFFs in a projected coordinate system (UTM zone 32N,
 EPSG:32632, metres), so that the example needs no external data.
@@ -6,18 +6,16 @@ EPSG:32632, metres), so that the example needs no external data.
   pre_failure.tif       today's ground, the slide in place (what a survey gives)
   sliding_surface.tif   the ground beneath the slide: the pre-failure ground minus the
                         slide's thickness (equal to it elsewhere). The walls, for the water
-                        and for the spheres, are this surface;
-the slide fills the space between the two.
+                        and for the spheres, are this surface; the slide fills the space
+                        between the two.
 
-    The
-    site(x, y relative to the south - west corner 600000 E, 5100000 N; every choice ours)
-    : *a valley along x,
-its axis winding y_c(x) = 100 + 25 sin(2 pi x / 400);
-a trapezoid cross - section with a 10 m flat bed and flanks of slope 0.6(31 degrees)up to a plateau at 1060 m;
-*the bed falls from 1030 m at x = 0 to 1000 m at the dam,
-                              so that the lake(level 1022 m) ends at x = 91 m, inside the domain;
-the dam(x = 330..350 m, crest 1030 m, faces of slope 1.5) closes the valley;
-downstream the bed lies at 990 m;
+The site (x, y relative to the south-west corner 600000 E, 5100000 N; every choice ours):
+* a valley along x, its axis winding y_c(x) = 100 + 25 sin(2 pi x / 400); a trapezoid
+  cross-section with a 10 m flat bed and flanks of slope 0.6 (31 degrees) up to a plateau
+  at 1060 m;
+* the bed falls from 1030 m at x = 0 to 1000 m at the dam, so that the lake (level
+  1022 m) ends at x = 91 m, inside the domain; the dam (x = 330..350 m, crest 1030 m,
+  faces of slope 1.5) closes the valley; downstream the bed lies at 990 m;
 * a closed basin high on the north flank (a cone, floor 1015 m at x = 80 m, y = 195 m,
   below the reservoir's level 1022 m; its rim towards the valley at 1033 m): it must stay
   dry, since it does not connect to the lake;
@@ -63,7 +61,7 @@ def write(path, z, cell):
     ny, nx = z.shape
     drv = gdal.GetDriverByName("GTiff")
     ds = drv.Create(path, nx, ny, 1, gdal.GDT_Float32)
-#North - up : the first row is the northern one; pixel centres at X0 + i cell.
+    # North-up: the first row is the northern one; pixel centres at X0 + i cell.
     ds.SetGeoTransform((X0 - cell / 2, cell, 0.0, Y0 + (ny - 1) * cell + cell / 2, 0.0, -cell))
     srs = osr.SpatialReference()
     srs.ImportFromEPSG(32632)
@@ -84,7 +82,7 @@ def main():
     ys = np.arange(0.0, LY + 1e-9, a.cell)
     x, y = np.meshgrid(xs, ys)
     z = ground(x, y)
-#float32 in the file : round here so that both surfaces hold the same values.
+    # float32 in the file: round here so that both surfaces hold the same values.
     z = z.astype(np.float32).astype(np.float64)
     write(os.path.join(a.out, "pre_failure.tif"), z, a.cell)
     write(os.path.join(a.out, "sliding_surface.tif"), z - slide_thickness(x, y), a.cell)

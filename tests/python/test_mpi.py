@@ -1,9 +1,8 @@
-""
-    "Distributed runs (MPI build): the same case on 1, 2 and 3 processes gives the same
-    bits-- gauges,
-    every particle file, the checkpoint-- on a dam break, on the coupled slide at coarse resolution,
-    on the reservoir from elevation grids(hazard maps included),
-    on Archimedes with mDBC and the symplectic integrator and on the DEM - only column;
+"""Distributed runs (MPI build): the same case on 1, 2 and 3 processes gives the same
+bits -- gauges, every particle file, the checkpoint -- on a dam break, on the coupled
+slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
+on Archimedes with mDBC and the symplectic integrator and on
+the DEM-only column;
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -30,7 +29,7 @@ def check(cond, what):
 
 
 def mpi(n, args, timeout=600):
-#One thread per process : 3 processes on this 2 - core machine already oversubscribe it.
+    # One thread per process: 3 processes on this 2-core machine already oversubscribe it.
     cmd = [MPIRUN, "--oversubscribe", "-n", str(n)]
     if os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
@@ -72,7 +71,7 @@ if MPIRUN is None:
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 
-#-- - dam break : at least 300 steps, the front collapsing across slab faces
+# --- dam break: at least 300 steps, the front collapsing across slab faces
 dam = runs_on([1, 2, 3], "dambreak", os.path.join(CASES, "demo_dambreak.yaml"),
               ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
 s1, s3 = summary(dam[1]), summary(dam[3])
@@ -84,29 +83,29 @@ check(s3["particles"]["now"] == s1["particles"]["now"], "the same particle count
 for n in (2, 3):
     same_files(dam[1], dam[n], f"dam break, 1 and {n} processes")
 
-#-- - wall - clock checkpoints between outputs(every 0.2 s of wall time) : a gather every
-#process must join, decided together although each has its own clock
+# --- wall-clock checkpoints between outputs (every 0.2 s of wall time): a gather every
+# process must join, decided together although each has its own clock
 out = os.path.join(WORK, "dambreak_wallck")
 r = mpi(3, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--quiet", "--set", "time.end=0.03",
             "--set", "time.output_every=0.015", "--set", "time.checkpoint_every_wall=0.2"], timeout=300)
 check(r.returncode == 0, f"3 processes with wall-clock checkpoints every 0.2 s finish (exit {r.returncode})")
 same_files(dam[1], out, "dam break with wall-clock checkpoints on 3 processes, against 1 without")
 
-#-- - the reservoir from elevation grids : terrain, lake, slide between grids, hazard maps
+# --- the reservoir from elevation grids: terrain, lake, slide between grids, hazard maps
 res = runs_on([1, 2, 3], "reservoir", os.path.join(CASES, "reservoir", "reservoir.yaml"),
               ["--set", "time.end=0.4", "--set", "time.output_every=0.2", "--set", "time.gauge_every=0.05"])
 check(len(glob.glob(os.path.join(res[1], "maps", "*.tif"))) == 4, "reservoir: four hazard maps written")
 for n in (2, 3):
     same_files(res[1], res[n], f"reservoir with hazard maps, 1 and {n} processes")
 
-#-- - the coupled slide at dp = 0.04 m : spheres entering the water, DEM on every process
+# --- the coupled slide at dp = 0.04 m: spheres entering the water, DEM on every process
 slide_sets = ["--set", "dp=0.04", "--set", "time.end=0.075", "--set", "time.output_every=0.025"]
 slide = runs_on([1, 2, 3], "slide", os.path.join(CASES, "slide_tsunami.yaml"), slide_sets)
 check(summary(slide[1])["steps"] >= 300, f"slide: {summary(slide[1])['steps']} steps (>= 300)")
 for n in (2, 3):
     same_files(slide[1], slide[n], f"coupled slide, 1 and {n} processes")
 
-#-- - restart on another process count : written by 3 processes, continued by 2
+# --- restart on another process count: written by 3 processes, continued by 2
 out = os.path.join(WORK, "slide_restart")
 r = mpi(3, ["run", os.path.join(CASES, "slide_tsunami.yaml"), "--out", out, "--quiet", "--set", "dp=0.04",
             "--set", "time.end=0.05", "--set", "time.output_every=0.025"])
@@ -115,14 +114,14 @@ r = mpi(2, ["restart", out, "--quiet", "--set", "time.end=0.075"])
 check(r.returncode == 0, f"restart on 2 processes (exit {r.returncode}: {r.stderr[-300:]})")
 same_files(slide[1], out, "slide written by 3 processes, continued by 2, against 1 straight")
 
-#-- - mDBC ghosts(sphere and walls) and the two - evaluation symplectic step : the widest halo
+# --- mDBC ghosts (sphere and walls) and the two-evaluation symplectic step: the widest halo
 arch = runs_on([1, 3], "archimedes", os.path.join(CASES, "archimedes.yaml"),
                ["--set", "time.end=0.02", "--set", "time.output_every=0.01", "--set", "sph.boundary=mdbc",
                 "--set", "sph.integrator=symplectic"])
 same_files(arch[1], arch[3], "Archimedes with mdbc and symplectic, 1 and 3 processes")
 
-#-- - a DEM - only case : every process advances the same spheres, rank 0 writes; a
-#checkpoint written by 3 processes continues on 1 as the straight run
+# --- a DEM-only case: every process advances the same spheres, rank 0 writes; a
+# checkpoint written by 3 processes continues on 1 as the straight run
 col_sets = ["--set", "time.end=0.05", "--set", "time.output_every=0.025"]
 col = runs_on([1, 2, 3], "column", os.path.join(CASES, "column_collapse.yaml"), col_sets)
 for n in (2, 3):
@@ -136,9 +135,9 @@ r = mpi(1, ["restart", out, "--quiet", "--set", "time.end=0.05"])
 check(r.returncode == 0, f"DEM-only restart on 1 process (exit {r.returncode}: {r.stderr[-300:]})")
 same_files(col[1], out, "DEM-only column written by 3 processes, continued by 1, against 1 straight")
 
-#-- - coupling.force_sum : per_sphere(per - process sphere sums added in rank order) : equal to
-#one process to round - off(relative 1e-5), not necessarily bitwise; the fixed sphere leaves
-#the water's bits alone
+# --- coupling.force_sum: per_sphere (per-process sphere sums added in rank order): equal to
+# one process to round-off (relative 1e-5), not necessarily bitwise; the fixed sphere leaves
+# the water's bits alone
 ps = runs_on([1, 3], "archimedes_per_sphere", os.path.join(CASES, "archimedes.yaml"),
              ["--set", "time.end=0.02", "--set", "time.output_every=0.01", "--set", "coupling.force_sum=per_sphere"])
 
@@ -157,20 +156,20 @@ check(len(g1) == len(g3) and worst <= 1e-5,
 s1 = summary(ps[3])
 check(s1["distributed"]["ranks"] == 3, "per_sphere run on 3 processes")
 
-#-- - bad input : every process stops, one message, exit 2, nothing written
+# --- bad input: every process stops, one message, exit 2, nothing written
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])
 check(r.returncode == 2, f"bad input on 2 processes exits 2 (got {r.returncode})")
 check(r.stderr.count("error:") == 1, f"one error message, not one per process ({r.stderr.count('error:')})")
 check(not os.path.exists(os.path.join(WORK, "bad")), "nothing written for bad input")
 
-#-- - divergence : every process stops at the same step with exit 3, outputs intact
+# --- divergence: every process stops at the same step with exit 3, outputs intact
 out = os.path.join(WORK, "unstable")
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--set", "sph.cfl=8",
             "--set", "time.end=0.5", "--set", "time.output_every=0.01"])
 check(r.returncode == 3, f"diverging run on 2 processes exits 3 (got {r.returncode}; {r.stderr[-200:]})")
 check(r.returncode == 3 and summary(out)["status"] == "diverged", "summary records the divergence")
 
-#-- - Ctrl - C(mpirun passes SIGINT on as SIGTERM) : every process stops, state written, exit 130
+# --- Ctrl-C (mpirun passes SIGINT on as SIGTERM): every process stops, state written, exit 130
 out = os.path.join(WORK, "interrupted")
 cmd = [MPIRUN, "--oversubscribe", "-n", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
 p = subprocess.Popen(cmd + [SURGE, "run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", out, "--threads", "1",
@@ -182,10 +181,14 @@ while time.time() < deadline and not os.path.exists(os.path.join(out, "summary.j
 time.sleep(2.0)
 p.send_signal(signal.SIGINT)
 try:
-    p
-.communicate(timeout = 120) except subprocess.TimeoutExpired : p.kill() p.communicate() s =
-    summary(out) check(s["status"] == "interrupted",
-                       f "interrupted run's summary says so (status {s['status']}, mpirun exit " f "{p.returncode})")
-        check(s["steps"] > 0 and os.path.exists(os.path.join(out, "checkpoint.bin")), "its state is written")
+    p.communicate(timeout=120)
+except subprocess.TimeoutExpired:
+    p.kill()
+    p.communicate()
+s = summary(out)
+check(s["status"] == "interrupted", f"interrupted run's summary says so (status {s['status']}, mpirun exit "
+      f"{p.returncode})")
+check(s["steps"] > 0 and os.path.exists(os.path.join(out, "checkpoint.bin")), "its state is written")
 
-            print(f "{len(failures)} failure(s)") sys.exit(1 if failures else 0)
+print(f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
