@@ -5,6 +5,7 @@
 #include "surge/coupling/sph_dem_coupling.hpp"
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/geometry/raster.hpp"
+#include "surge/geometry/terrain.hpp"
 #include "surge/io/atomic_file.hpp"
 #include "surge/io/case_reader.hpp"
 #include "surge/io/checkpoint.hpp"
@@ -149,6 +150,34 @@ int check_warnings(const Case& c, const sph::InitialState& init, const CoupledPa
   return warnings;
 }
 
+// Terrain steeper than the wall lattice follows well: slopes above 60 degrees (the layers
+// become steps a spacing high) and pixels much finer than dp (detail the particles cannot
+// hold), with where they are.
+void print_terrain_warnings(const Case& c, const WallSpec& w) {
+  const auto g = geometry::read_terrain(w.mesh_path, c.domain);
+  long steep = 0;
+  double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
+  for (long j = 0; j + 1 < g.ny; ++j)
+    for (long i = 0; i + 1 < g.nx; ++i) {
+      const double sx = (g.at(i + 1, j) - g.at(i, j)) / g.dx, sy = (g.at(i, j + 1) - g.at(i, j)) / g.dy;
+      if (std::hypot(sx, sy) <= std::tan(60.0 * M_PI / 180)) continue;
+      ++steep;
+      xlo = std::min(xlo, g.x(i));
+      xhi = std::max(xhi, g.x(i + 1));
+      ylo = std::min(ylo, g.y(j));
+      yhi = std::max(yhi, g.y(j + 1));
+    }
+  if (steep > 0)
+    std::printf("warning     terrain '%s': %ld pixels steeper than 60 degrees within x [%.3f, %.3f], y [%.3f, %.3f]: "
+                "its wall layers step there by a spacing or more (cliffs hold water, but the flow along them is coarse)"
+                "\n",
+                w.name.c_str(), steep, xlo, xhi, ylo, yhi);
+  if (std::min(g.dx, g.dy) < 0.5 * c.dp)
+    std::printf("warning     terrain '%s': pixels of %g m, finer than dp/2 = %g m: features narrower than a few dp "
+                "(gullies, ridges) are smoothed away by the particles\n",
+                w.name.c_str(), std::min(g.dx, g.dy), 0.5 * c.dp);
+}
+
 } // namespace
 
 int check(const Case& c) {
@@ -185,7 +214,16 @@ int check(const Case& c) {
                 std::ceil(dt0 / static_cast<double>(cp->coupling->dt_dem())));
     if (const std::string w = dem_step_warning(c, *cp->dem); !w.empty()) std::printf("warning     %s\n", w.c_str());
     print_slides(c, cp->setup);
+    double slide_volume = 0;
+    for (const auto& sl : cp->setup.slides) slide_volume += sl.volume;
+    const double displaced = static_cast<double>(cp->fluid_removed) * c.dp * c.dp * c.dp;
+    if (slide_volume > 0 && displaced > slide_volume)
+      std::printf("warning     the slide bodies overlap %.6g m^3 of water, more than their own %.6g m^3: is the "
+                  "sliding surface under the lake, or the level too high?\n",
+                  displaced, slide_volume);
   }
+  for (const auto& w : c.walls)
+    if (w.terrain) print_terrain_warnings(c, w);
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),

@@ -63,6 +63,7 @@ HazardMaps::HazardMaps(const Case& c, const InitialState& init) : cfg_(c.hazard)
   max_speed_.assign(n_cells_, nan);
   arrival_.assign(n_cells_, nan);
   first_wet_.assign(run_up_points_.size(), nan);
+  top_.assign(run_up_points_.size(), nan);
   ground_.assign(run_up_points_.size(), nan);
 }
 
@@ -88,7 +89,11 @@ void HazardMaps::sample(double t, WcsphSolver& solver, const Distribution& dist)
   for (std::size_t p = 0; p < run_up_points_.size(); ++p) {
     const auto& cl = col[n_cells_ + p];
     ground_[p] = cl.bed;
-    if (std::isnan(first_wet_[p]) && wet(cl)) first_wet_[p] = t;
+    if (!wet(cl)) continue;
+    if (std::isnan(first_wet_[p])) first_wet_[p] = t;
+    // The water's surface over the point: a film thinner than the fluid-fraction criterion
+    // reads as the column's top.
+    raise(top_[p], cl.water_top > cl.bed ? cl.water_top : cl.top);
   }
 }
 
@@ -97,7 +102,10 @@ std::vector<std::string> HazardMaps::map_names() { return {"max_elevation", "max
 std::vector<std::vector<double>> HazardMaps::maps() const { return {max_eta_, max_depth_, max_speed_, arrival_}; }
 
 std::string HazardMaps::run_up_csv() const {
-  std::string out = "line,x,y,run_up_z,above_still_level,first_wet_time\n";
+  // The run-up: at the highest ground the water wetted, the highest surface it stood to
+  // there (the waterline's elevation; the wetted ground alone lies up to a spacing's rise
+  // below it, between the points a spacing apart).
+  std::string out = "line,x,y,ground_z,run_up_z,above_still_level,first_wet_time\n";
   for (std::size_t l = 0; l < cfg_.run_up.size(); ++l) {
     long best = -1;
     for (std::size_t p = 0; p < run_up_points_.size(); ++p)
@@ -106,12 +114,12 @@ std::string HazardMaps::run_up_csv() const {
         best = static_cast<long>(p);
     char row[256];
     if (best < 0) {
-      std::snprintf(row, sizeof row, "%s,,,,,\n", cfg_.run_up[l].name.c_str());
+      std::snprintf(row, sizeof row, "%s,,,,,,\n", cfg_.run_up[l].name.c_str());
     } else {
-      const auto& q = run_up_points_[static_cast<std::size_t>(best)];
-      const double z = ground_[static_cast<std::size_t>(best)];
-      std::snprintf(row, sizeof row, "%s,%.3f,%.3f,%.4f,%.4f,%.4f\n", cfg_.run_up[l].name.c_str(), q.x, q.y, z,
-                    z - cfg_.still_level, first_wet_[static_cast<std::size_t>(best)]);
+      const auto b = static_cast<std::size_t>(best);
+      const auto& q = run_up_points_[b];
+      std::snprintf(row, sizeof row, "%s,%.3f,%.3f,%.4f,%.4f,%.4f,%.4f\n", cfg_.run_up[l].name.c_str(), q.x, q.y,
+                    ground_[b], top_[b], top_[b] - cfg_.still_level, first_wet_[b]);
     }
     out += row;
   }
@@ -120,7 +128,7 @@ std::string HazardMaps::run_up_csv() const {
 
 std::string HazardMaps::save() const {
   std::string b;
-  for (const auto* v : {&max_eta_, &max_depth_, &max_speed_, &arrival_, &first_wet_, &ground_}) {
+  for (const auto* v : {&max_eta_, &max_depth_, &max_speed_, &arrival_, &first_wet_, &ground_, &top_}) {
     const std::uint64_t n = v->size();
     b.append(reinterpret_cast<const char*>(&n), sizeof n);
     b.append(reinterpret_cast<const char*>(v->data()), n * sizeof(double));
@@ -131,7 +139,7 @@ std::string HazardMaps::save() const {
 void HazardMaps::restore(const std::string& bytes, const std::string& checkpoint_path) {
   if (!enabled()) return;
   std::size_t pos = 0;
-  for (auto* v : {&max_eta_, &max_depth_, &max_speed_, &arrival_, &first_wet_, &ground_}) {
+  for (auto* v : {&max_eta_, &max_depth_, &max_speed_, &arrival_, &first_wet_, &ground_, &top_}) {
     std::uint64_t n = 0;
     if (pos + sizeof n > bytes.size()) throw InputError(checkpoint_path, 0, "", "its hazard maps are truncated");
     std::memcpy(&n, bytes.data() + pos, sizeof n);

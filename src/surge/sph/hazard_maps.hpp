@@ -30,8 +30,8 @@ public:
   // never reached).
   [[nodiscard]] std::vector<std::vector<double>> maps() const;
   [[nodiscard]] static std::vector<std::string> map_names();
-  // runup.csv: per line, the highest wetted ground point, its height above the still
-  // level and when the water first reached it.
+  // runup.csv: per line, the highest wetted ground point, the highest water surface over
+  // it (the run-up), that above the still level, and when the water first reached it.
   [[nodiscard]] std::string run_up_csv() const;
   // The accumulated state, for checkpoints.
   [[nodiscard]] std::string save() const;
@@ -50,6 +50,7 @@ private:
   std::vector<RunUpPoint> run_up_points_;
   std::vector<double> first_wet_; // per run-up point: the first time it was wet (NaN: never)
   std::vector<double> ground_;    // per run-up point: the ground there
+  std::vector<double> top_;       // per run-up point: the highest water surface over it (NaN: never wet)
 };
 
 } // namespace surge::sph
