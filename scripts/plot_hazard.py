@@ -91,7 +91,7 @@ def main():
                     ax.plot(float(row["x"]), float(row["y"]), "r^", ms=9)
                     ax.annotate(f"{row['line']}: {float(row['above_still_level']):+.2f} m", (float(row["x"]), float(row["y"])),
                                 textcoords="offset points", xytext=(6, 6), fontsize=8, color="darkred")
-        ax.plot([], [], "r^", label="run-up (highest wetted ground)")
+        ax.plot([], [], "r^", label="run-up: the waterline at the highest wetted ground")
     ax.set_xlim(m_ext[0], m_ext[1])
     ax.set_ylim(m_ext[2], m_ext[3])
     ax.set_xlabel("easting [m]")

@@ -138,6 +138,12 @@ check(np.nanmin(eta[wet]) >= level - dp / 8, f"the highest surface is at least t
 basin_cells = (np.hypot(mx - 600080, my - 5100195) < 8)
 check(not np.any(wet & basin_cells), "the closed basin stays dry in the maps")
 
+with open(os.path.join(out, "maps", "runup.csv")) as f:
+    base = {row["line"]: row for row in csv.DictReader(f)}
+south0 = float(base["south_shore"]["run_up_z"])
+check(abs(south0 - level) <= dp / 8, f"at rest the run-up reading on the south shore is the still level within dp/8 "
+      f"({south0:.3f} m)")
+
 r = surge("restart", out, "--quiet", "--threads", "2", "--set", "time.end=2")
 check(r.returncode == 0, "the restart to 2 s completes " + r.stderr[-300:])
 r = surge("run", case, "--out", straight, "--quiet", "--threads", "2", "--set", "time.end=2")
@@ -159,9 +165,10 @@ check(np.isfinite(arrival).sum() > 50, f"{np.isfinite(arrival).sum()} cells saw 
 with open(os.path.join(out, "maps", "runup.csv")) as f:
     rows = {row["line"]: row for row in csv.DictReader(f)}
 south = rows.get("south_shore", {})
-check(bool(south.get("run_up_z")) and float(south["above_still_level"]) > 0,
-      f"run-up on the far (south) shore above the still level: {south.get('above_still_level')} m "
-      f"(wetted ground {south.get('ground_z')} m, first wet at {south.get('first_wet_time')} s)")
+check(bool(south.get("run_up_z")) and float(south["above_still_level"]) > 0 and
+      float(south["run_up_z"]) >= south0 + 0.15,
+      f"run-up on the far (south) shore above the still level: {south.get('above_still_level')} m, and at least "
+      f"0.15 m above its reading at rest ({south0:.3f} m; wetted ground {south.get('ground_z')} m)")
 
 # --- bad input: exit 2, the file named, nothing written
 bad = os.path.join(WORK, "bad")

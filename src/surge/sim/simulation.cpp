@@ -224,6 +224,10 @@ int check(const Case& c) {
   }
   for (const auto& w : c.walls)
     if (w.terrain) print_terrain_warnings(c, w);
+  if (c.hazard.enabled && c.hazard.arrival_height < c.dp / 8)
+    std::printf("warning     hazard.arrival_height = %g m is below dp/8 = %g m: the surface read at rest scatters "
+                "by up to dp/8, so cells would record arrivals before any wave\n",
+                c.hazard.arrival_height, c.dp / 8);
   std::printf("memory      about %.1f MiB (%.0f bytes per particle)\n", n * bytes_per_particle_estimate / 1048576.0,
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
