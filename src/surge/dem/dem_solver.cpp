@@ -543,7 +543,10 @@ void DemSolver::build_triangle_grid() {
       for (int z = c0[2]; z <= c1[2]; ++z)
         for (int y = c0[1]; y <= c1[1]; ++y)
           for (int x = c0[0]; x <= c1[0]; ++x) {
-            const auto c = static_cast<std::size_t>((z * n[1] + y) * n[0] + x);
+            const std::size_t c =
+                (static_cast<std::size_t>(z) * static_cast<std::size_t>(n[1]) + static_cast<std::size_t>(y)) *
+                    static_cast<std::size_t>(n[0]) +
+                static_cast<std::size_t>(x);
             if (pass == 1) items[start[c] + count[c]] = static_cast<std::uint32_t>(t);
             ++count[c];
           }

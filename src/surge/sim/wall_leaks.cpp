@@ -11,7 +11,9 @@ namespace surge::sim {
 WallLeaks::WallLeaks(const Case& c) : walls_(c.walls) {
   band_ = geometry::wall_layers(c) * c.dp;
   for (const auto& w : walls_) {
-    meshes_.push_back(w.is_mesh ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain)) : nullptr);
+    meshes_.push_back(w.is_mesh
+                          ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
+                          : nullptr);
     Box r = w.is_mesh ? geometry::bounds(*meshes_.back()) : w.box;
     // A solid mesh has no water behind it at any depth: its reach extends down without bound.
     const double below = w.is_mesh && w.solid ? 1e300 : band_;
