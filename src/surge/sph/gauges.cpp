@@ -25,6 +25,12 @@ void wall_accelerations(const particles::ParticleView& p, std::uint32_t id0, std
         if (p.id[i] >= id0 && p.id[i] < id1 && p.owned(i)) out[p.id[i] - id0] = p.acc[i];
       });
 }
+// out[k] = the kernel sums at pts[k] (a free function for nvcc's extended lambdas).
+void point_sums(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p, const Vec3* pts,
+                int n, PointSums* out) {
+  par::parallel_for(
+      n, SURGE_LAMBDA(int k) { out[k] = fluid_sums(prm, g, p, pts[k]); });
+}
 } // namespace detail
 
 Gauges::Gauges(const Case& c, const InitialState& init) {
@@ -71,10 +77,7 @@ std::vector<PointSums> Gauges::point_sums(WcsphSolver& solver, const Distributio
   auto p = solver.view();
   const auto g = solver.grid_view();
   const WcsphParams prm = solver.params();
-  const Vec3* pts = points_.data();
-  PointSums* out = sums_.data();
-  par::parallel_for(
-      static_cast<int>(points_host_.size()), SURGE_LAMBDA(int k) { out[k] = fluid_sums(prm, g, p, pts[k]); });
+  detail::point_sums(prm, g, p, points_.data(), static_cast<int>(points_host_.size()), sums_.data());
   std::vector<PointSums> sums;
   par::download(sums, sums_, sums_.size());
   if (dist.distributed()) {
