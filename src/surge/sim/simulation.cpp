@@ -19,6 +19,7 @@
 #include "surge/sph/hazard_maps.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -198,9 +199,12 @@ int check(const Case& c) {
     // Counted before the water inside spheres is taken out.
     const double placed = static_cast<double>(init.n_fluid + (cp ? cp->fluid_removed : 0)) * c.dp * c.dp * c.dp;
     water_share = placed / init.fluid_volume_asked;
-    std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes (%.1f %%; lattices of whole spacings, "
-                "centred in each box)\n",
-                placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
+    if (std::all_of(c.fluid.begin(), c.fluid.end(), [](const FluidRegion& f) { return f.reservoir; }))
+      std::printf("water       %.6g m^3 placed (reservoirs filled to their levels)\n", placed);
+    else
+      std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes and reservoirs (%.1f %%; lattices of "
+                  "whole spacings, centred in each box)\n",
+                  placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
     if (init.reservoir_columns > 0)
       std::printf("reservoir   free surface %.6g m^2 (%ld lattice columns of dp^2), the water counted above\n",
                   static_cast<double>(init.reservoir_columns) * c.dp * c.dp, init.reservoir_columns);
