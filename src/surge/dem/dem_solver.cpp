@@ -2,6 +2,7 @@
 
 #include "surge/algo/algo.hpp"
 
+#include "surge/geometry/box_buckets.hpp"
 #include "surge/geometry/closest_point.hpp"
 
 #include <algorithm>
@@ -492,74 +493,29 @@ void DemSolver::set_wall_triangles(const std::vector<WallTriangle>& t) {
 }
 
 void DemSolver::build_triangle_grid() {
-  // Cells about a triangle or a sphere wide; no more than 8 per triangle.
-  const Real r = max_radius_;
-  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-  Real extent = 2 * r;
-  std::vector<Vec3> blo, bhi;
+  // Each triangle's box grown by the largest radius: a sphere's centre cell lists every
+  // triangle the sphere can touch.
+  const double r = max_radius_;
+  std::vector<Vec3d> blo, bhi;
   for (const auto& t : triangles_host_) {
-    Vec3 a = t.a, b = t.a;
+    Vec3d a(t.a), b(t.a);
     for (const Vec3& p : {t.b, t.c})
       for (int k = 0; k < 3; ++k) {
-        a[k] = std::min(a[k], p[k]);
-        b[k] = std::max(b[k], p[k]);
+        a[k] = std::min(a[k], static_cast<double>(p[k]));
+        b[k] = std::max(b[k], static_cast<double>(p[k]));
       }
-    for (int k = 0; k < 3; ++k) {
-      a[k] -= r;
-      b[k] += r;
-      lo[k] = std::min(lo[k], a[k]);
-      hi[k] = std::max(hi[k], b[k]);
-      extent = std::max(extent, b[k] - a[k] - 2 * r);
-    }
-    blo.push_back(a);
-    bhi.push_back(b);
+    blo.push_back(a - Vec3d{r, r, r});
+    bhi.push_back(b + Vec3d{r, r, r});
   }
-  Real cell = extent;
-  const double max_cells = 8.0 * static_cast<double>(triangles_host_.size()) + 64;
-  int n[3];
-  for (;;) {
-    double cells = 1;
-    for (int k = 0; k < 3; ++k) {
-      n[k] = static_cast<int>((hi[k] - lo[k]) / cell) + 1;
-      cells *= n[k];
-    }
-    if (cells <= max_cells) break;
-    cell *= Real(1.5);
-  }
-  const auto n_cells = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
-  std::vector<std::uint32_t> count(n_cells + 1, 0), start(n_cells + 1, 0), items;
-  for (int pass = 0; pass < 2; ++pass) {
-    if (pass == 1) {
-      for (std::size_t c = 0; c < n_cells; ++c) start[c + 1] = start[c] + count[c];
-      items.resize(start[n_cells]);
-      std::fill(count.begin(), count.end(), 0);
-    }
-    for (std::size_t t = 0; t < blo.size(); ++t) {
-      int c0[3], c1[3];
-      for (int k = 0; k < 3; ++k) {
-        c0[k] = std::clamp(static_cast<int>((blo[t][k] - lo[k]) / cell), 0, n[k] - 1);
-        c1[k] = std::clamp(static_cast<int>((bhi[t][k] - lo[k]) / cell), 0, n[k] - 1);
-      }
-      for (int z = c0[2]; z <= c1[2]; ++z)
-        for (int y = c0[1]; y <= c1[1]; ++y)
-          for (int x = c0[0]; x <= c1[0]; ++x) {
-            const std::size_t c =
-                (static_cast<std::size_t>(z) * static_cast<std::size_t>(n[1]) + static_cast<std::size_t>(y)) *
-                    static_cast<std::size_t>(n[0]) +
-                static_cast<std::size_t>(x);
-            if (pass == 1) items[start[c] + count[c]] = static_cast<std::uint32_t>(t);
-            ++count[c];
-          }
-    }
-  }
-  par::upload(tri_start_, start);
-  par::upload(tri_items_, items);
-  tri_grid_.lo = lo;
-  tri_grid_.inv_cell = 1 / cell;
-  for (int k = 0; k < 3; ++k) tri_grid_.n[k] = n[k];
+  const geometry::BoxBuckets g = geometry::bucket_boxes(blo, bhi, 2 * r);
+  par::upload(tri_start_, g.start);
+  par::upload(tri_items_, g.items);
+  tri_grid_.lo = Vec3(g.lo);
+  tri_grid_.inv_cell = static_cast<Real>(1 / g.cell);
+  for (int k = 0; k < 3; ++k) tri_grid_.n[k] = static_cast<int>(g.n[k]);
   tri_grid_.start = tri_start_.data();
   tri_grid_.items = tri_items_.data();
-  tri_grid_radius_ = r;
+  tri_grid_radius_ = max_radius_;
 }
 
 void DemSolver::set_spheres(const std::vector<Sphere>& s) {

@@ -5,6 +5,7 @@
 // triangles in the mesh's order, as the loop over all of them did (same ties, same bits).
 #pragma once
 #include "surge/core/types.hpp"
+#include "surge/geometry/box_buckets.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -18,19 +19,13 @@ public:
   explicit TriangleIndex(const std::vector<Triangle>& tris);
   // Indices of the triangles whose bounding boxes meet the box [lo, hi], ascending.
   void overlapping(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
-  // The smallest box holding every triangle.
-  [[nodiscard]] const Vec3d& lo() const { return lo_; }
-  [[nodiscard]] const Vec3d& hi() const { return hi_; }
-  [[nodiscard]] double cell() const { return cell_; }
+  // The cell size of the buckets.
+  [[nodiscard]] double cell() const { return grid_.cell; }
 
 private:
-  Vec3d lo_{}, hi_{};
-  double cell_ = 1;
-  long n_[3] = {1, 1, 1};
-  std::vector<std::uint32_t> start_; // per cell, into items_ (CSR)
-  std::vector<std::uint32_t> items_;
+  BoxBuckets grid_;
+  Vec3d hi_{};                         // the highest corner of all triangles
   std::vector<Vec3d> box_lo_, box_hi_; // per triangle
-  void cell_range(const Vec3d& lo, const Vec3d& hi, long (&c0)[3], long (&c1)[3]) const;
 };
 
 } // namespace surge::geometry
