@@ -300,6 +300,18 @@ void add(std::vector<KeyDoc>& out, const std::string& prefix, const std::vector<
     out.push_back({prefix + f.key, type_of(f), default_of(f, defaults), f.unit, allowed_of(f), f.help});
 }
 
+// The hazard section's keys (issue 22).
+void hazard_keys(std::vector<KeyDoc>& k) {
+  k.push_back({"hazard", "mapping", "", "", "",
+               "hazard maps on the terrain's grid (max elevation, depth, speed, arrival), run-up; in maps/"});
+  add(k, "hazard.", hazard_fields());
+  k.push_back({"hazard.still_level", "number", "the reservoir's level", "m", "", "the water's level at rest"});
+  k.push_back({"hazard.run_up", "list", "", "", "", "lines along which the highest wetted ground is reported"});
+  k.push_back({"hazard.run_up[].name", "text", "required", "", "unique, no commas", "the line's name"});
+  k.push_back({"hazard.run_up[].from", "[x, y]", "required", "m", "in the domain", "where the line starts"});
+  k.push_back({"hazard.run_up[].to", "[x, y]", "required", "m", "in the domain", "where it ends"});
+}
+
 std::vector<KeyDoc> build_keys() {
   std::vector<KeyDoc> k;
   const std::string vec = "[x, y, z]";
@@ -371,14 +383,7 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.packs[].radius", "number", "required (box, mesh, between)", "m", "> 0", "sphere radius"});
   k.push_back({"dem.packs[].material", "text", "required", "", "a material's name", "the spheres' material"});
   add(k, "dem.packs[].", pack_fields());
-  k.push_back({"hazard", "mapping", "", "", "",
-               "hazard maps on the terrain's grid (max elevation, depth, speed, arrival), run-up; in maps/"});
-  add(k, "hazard.", hazard_fields());
-  k.push_back({"hazard.still_level", "number", "the reservoir's level", "m", "", "the water's level at rest"});
-  k.push_back({"hazard.run_up", "list", "", "", "", "lines along which the highest wetted ground is reported"});
-  k.push_back({"hazard.run_up[].name", "text", "required", "", "unique, no commas", "the line's name"});
-  k.push_back({"hazard.run_up[].from", "[x, y]", "required", "m", "in the domain", "where the line starts"});
-  k.push_back({"hazard.run_up[].to", "[x, y]", "required", "m", "in the domain", "where it ends"});
+  hazard_keys(k);
   k.push_back({"coupling", "mapping", "", "", "", "SPH-DEM coupling (SPEC 4)"});
   add(k, "coupling.", coupling_fields());
   return k;

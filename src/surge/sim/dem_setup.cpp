@@ -42,6 +42,33 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   }
   return out;
 }
+// A slide body between two grids (geometry/slide_body.hpp), checked against the DEM's
+// terrain walls; its report goes to s.slides.
+std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& pk, DemSetup& s) {
+  const auto body =
+      geometry::fill_slide(geometry::read_terrain(pk.top_path, c.domain),
+                           geometry::read_terrain(pk.bottom_path, c.domain), pk.radius, c.domain.min, pk.bottom_path);
+  if (body.spheres.empty())
+    throw InputError(c.source, pk.line, "dem.packs.between",
+                     "no sphere of this radius fits between the surfaces; use smaller spheres");
+  // The walls must be the ground beneath the slide: spheres under a terrain wall (the
+  // pre-failure ground given as the wall) would be thrown out of it at the first step.
+  for (const auto& w : c.dem.walls) {
+    if (!w.terrain) continue;
+    const auto ground = geometry::read_terrain(w.mesh_path, c.domain);
+    long under = 0;
+    for (const auto& sp : body.spheres)
+      under += sp.centre.z < geometry::surface_height(ground, sp.centre.x, sp.centre.y) ? 1 : 0;
+    if (under > 0)
+      throw InputError(c.source, pk.line, "dem.packs.between",
+                       std::to_string(under) + " of the slide's spheres lie under the ground of the DEM wall '" +
+                           w.mesh_path +
+                           "': the walls must be the ground beneath the slide (its sliding surface), not the "
+                           "pre-failure ground");
+  }
+  s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius});
+  return body.spheres;
+}
 // The case's contact law, and every material suits it (Hertz-Mindlin: Poisson's ratio
 // below 0.5, no bonds; the linear spring: a positive stiffness ratio).
 void check_contact_law(const Case& c, DemSetup& s) {
@@ -94,29 +121,7 @@ DemSetup dem_setup(const Case& c) {
     if (pk.from_csv) {
       list = geometry::read_sphere_csv(pk.csv);
     } else if (!pk.bottom_path.empty()) {
-      const auto body = geometry::fill_slide(geometry::read_terrain(pk.top_path, c.domain),
-                                             geometry::read_terrain(pk.bottom_path, c.domain), pk.radius, c.domain.min,
-                                             pk.bottom_path);
-      if (body.spheres.empty())
-        throw InputError(c.source, pk.line, "dem.packs.between",
-                         "no sphere of this radius fits between the surfaces; use smaller spheres");
-      // The walls must be the ground beneath the slide: spheres under a terrain wall (the
-      // pre-failure ground given as the wall) would be thrown out of it at the first step.
-      for (const auto& w : c.dem.walls) {
-        if (!w.terrain) continue;
-        const auto ground = geometry::read_terrain(w.mesh_path, c.domain);
-        long under = 0;
-        for (const auto& sp : body.spheres)
-          under += sp.centre.z < geometry::surface_height(ground, sp.centre.x, sp.centre.y) ? 1 : 0;
-        if (under > 0)
-          throw InputError(c.source, pk.line, "dem.packs.between",
-                           std::to_string(under) + " of the slide's spheres lie under the ground of the DEM wall '" +
-                               w.mesh_path +
-                               "': the walls must be the ground beneath the slide (its sliding surface), not the "
-                               "pre-failure ground");
-      }
-      s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius});
-      list = body.spheres;
+      list = slide_pack(c, pk, s);
     } else {
       geometry::PackRegion region{pk.box, nullptr};
       geometry::Mesh mesh;

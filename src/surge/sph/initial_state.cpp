@@ -32,13 +32,51 @@ std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init) {
   }
   return {lo, hi};
 }
+using Meshes = std::vector<std::unique_ptr<geometry::Mesh>>;
+
+// True when pred(wall, its mesh) holds for some wall of the case.
+template <class P>
+bool any_wall(const Case& c, const Meshes& meshes, P&& pred) {
+  for (std::size_t w = 0; w < c.walls.size(); ++w)
+    if (pred(c.walls[w], meshes[w].get())) return true;
+  return false;
+}
+
+// The water of region f: a box's lattice less the points a wall blocks (counted in s), or
+// a reservoir filled from its seed; what was asked for is added to s.
+std::vector<Vec3d> fluid_points(const Case& c, const FluidRegion& f, const Meshes& meshes, const Vec3d& lattice,
+                                InitialState& s) {
+  if (f.reservoir) {
+    auto fill = geometry::fill_reservoir(f, c.domain, lattice, c.dp, [&](const Vec3d& p) {
+      return any_wall(c, meshes, [&](const WallSpec& w, const geometry::Mesh* m) {
+        return geometry::keeps_water_out(w, m, p, c.dp);
+      });
+    });
+    if (!fill.seed_problem.empty()) throw InputError(c.source, f.line, "fluid.reservoir.seed", fill.seed_problem);
+    s.reservoir_columns += fill.columns;
+    s.fluid_volume_asked += static_cast<double>(fill.points.size()) * c.dp * c.dp * c.dp;
+    return std::move(fill.points);
+  }
+  // Centred: a box that is not a whole number of spacings keeps its water in the middle,
+  // (surge check reports the volume placed against the volume asked for).
+  s.fluid_volume_asked += f.box.volume();
+  std::vector<Vec3d> pts;
+  for (const auto& p : geometry::fill_box(f.box, c.dp, true)) {
+    if (any_wall(c, meshes,
+                 [&](const WallSpec& w, const geometry::Mesh* m) { return geometry::blocked_by(w, m, p, c.dp); }))
+      ++s.fluid_dropped_by_walls;
+    else
+      pts.push_back(p);
+  }
+  return pts;
+}
 } // namespace
 
 InitialState build_initial_state(const Case& c) {
   InitialState s;
   s.origin = c.domain.min;
   const int layers = geometry::wall_layers(c);
-  std::vector<std::unique_ptr<geometry::Mesh>> meshes;
+  Meshes meshes;
   for (const auto& w : c.walls)
     meshes.push_back(w.is_mesh
                          ? std::make_unique<geometry::Mesh>(geometry::load_surface(w.mesh_path, w.terrain, c.domain))
@@ -49,38 +87,11 @@ InitialState build_initial_state(const Case& c) {
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
   const Vec3d lattice = geometry::lattice_origin(c); // the domain's corner without reservoirs
-  auto blocked = [&](const Vec3d& p) {
-    for (std::size_t w = 0; w < c.walls.size(); ++w)
-      if (geometry::blocked_by(c.walls[w], meshes[w].get(), p, c.dp)) return true;
-    return false;
-  };
-  for (const auto& f : c.fluid) {
-    std::vector<Vec3d> pts;
-    if (f.reservoir) {
-      auto fill = geometry::fill_reservoir(f, c.domain, lattice, c.dp, [&](const Vec3d& p) {
-        for (std::size_t w = 0; w < c.walls.size(); ++w)
-          if (geometry::keeps_water_out(c.walls[w], meshes[w].get(), p, c.dp)) return true;
-        return false;
-      });
-      if (!fill.seed_problem.empty()) throw InputError(c.source, f.line, "fluid.reservoir.seed", fill.seed_problem);
-      s.reservoir_columns += fill.columns;
-      pts = std::move(fill.points);
-      s.fluid_volume_asked += static_cast<double>(pts.size()) * c.dp * c.dp * c.dp;
-    } else {
-      // Centred: a box that is not a whole number of spacings keeps its water in the middle,
-      // (surge check reports the volume placed against the volume asked for).
-      s.fluid_volume_asked += f.box.volume();
-      pts = geometry::fill_box(f.box, c.dp, true);
-    }
-    for (const auto& p : pts) {
-      if (!f.reservoir && blocked(p)) {
-        ++s.fluid_dropped_by_walls;
-        continue;
-      }
+  for (const auto& f : c.fluid)
+    for (const auto& p : fluid_points(c, f, meshes, lattice, s)) {
       s.particles.push(local(p), Vec3(f.velocity), still_water_density(c, eos, f, p), Kind::Fluid, next_id++);
       ++s.n_fluid;
     }
-  }
   s.first_boundary_id = next_id;
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];
