@@ -125,6 +125,31 @@ TEST(Neighbour, RemovedParticlesAreDropped) {
   for (auto id : back.id) EXPECT_NE(id % 3, 0U);
 }
 
+namespace {
+// Per cell: 0 dry, 1 wet, 2 when UniformGrid's wet flag disagrees with brute force (a free
+// function: nvcc rejects a device lambda inside a gtest body, which is a private member).
+std::vector<int> wet_cell_verdicts(const particles::ParticleView& v, const neighbour::GridView& g) {
+  const int cells = static_cast<int>(g.spec.cells());
+  par::Buffer<int> state(static_cast<std::size_t>(cells)); // 0 dry, 1 wet, 2 wrong
+  int* out = state.data();
+  par::parallel_for(
+      cells, SURGE_LAMBDA(int c) {
+        const int cx = c % g.spec.nx, cy = (c / g.spec.nx) % g.spec.ny, cz = c / (g.spec.nx * g.spec.ny);
+        bool wet = false;
+        for (int i = 0; i < v.n; ++i) {
+          if (v.kind[i] != static_cast<std::uint8_t>(Kind::Fluid)) continue;
+          const std::uint32_t k = g.spec.key(v.pos[i]);
+          const int x = static_cast<int>(k) % g.spec.nx, y = (static_cast<int>(k) / g.spec.nx) % g.spec.ny,
+                    z = static_cast<int>(k) / (g.spec.nx * g.spec.ny);
+          const int m = g.spec.span;
+          wet = wet || (x >= cx - m && x <= cx + m && y >= cy - m && y <= cy + m && z >= cz - m && z <= cz + m);
+        }
+        out[c] = (g.wet[c] != 0) == wet ? (wet ? 1 : 0) : 2;
+      });
+  return par::download(state);
+}
+} // namespace
+
 // The cells whose stencil holds fluid (UniformGrid::mark_wet, what lets boundary particles
 // far from water skip their scan) against brute force: a cell is wet iff some fluid
 // particle's cell lies within `span` cells of it along every axis. Water in one corner of
@@ -146,24 +171,7 @@ TEST(Neighbour, WetCellsMatchBruteForce) {
   const auto v = store.view();
   const auto g = grid.view(v.pos);
   ASSERT_NE(g.wet, nullptr);
-  const int cells = static_cast<int>(g.spec.cells());
-  par::Buffer<int> state(static_cast<std::size_t>(cells)); // 0 dry, 1 wet, 2 wrong
-  int* out = state.data();
-  par::parallel_for(
-      cells, SURGE_LAMBDA(int c) {
-        const int cx = c % g.spec.nx, cy = (c / g.spec.nx) % g.spec.ny, cz = c / (g.spec.nx * g.spec.ny);
-        bool wet = false;
-        for (int i = 0; i < v.n; ++i) {
-          if (v.kind[i] != static_cast<std::uint8_t>(Kind::Fluid)) continue;
-          const std::uint32_t k = g.spec.key(v.pos[i]);
-          const int x = static_cast<int>(k) % g.spec.nx, y = (static_cast<int>(k) / g.spec.nx) % g.spec.ny,
-                    z = static_cast<int>(k) / (g.spec.nx * g.spec.ny);
-          const int m = g.spec.span;
-          wet = wet || (x >= cx - m && x <= cx + m && y >= cy - m && y <= cy + m && z >= cz - m && z <= cz + m);
-        }
-        out[c] = (g.wet[c] != 0) == wet ? (wet ? 1 : 0) : 2;
-      });
-  const auto s = par::download(state);
+  const auto s = wet_cell_verdicts(v, g);
   EXPECT_EQ(std::count(s.begin(), s.end(), 2), 0);
   EXPECT_GT(std::count(s.begin(), s.end(), 1), 0); // not vacuous: both kinds of cell exist
   EXPECT_GT(std::count(s.begin(), s.end(), 0), 0);
