@@ -223,3 +223,16 @@ TEST(CaseReader, ReservoirAndHazardInputErrors) {
   expect_error(head + "walls: [{box: {min: [0, 0, 0], max: [0.2, 0.1, 0.3]}, terrain: ground.tif}]\n", 4, "walls.0",
                "exactly one of 'box', 'mesh' (an STL file) or 'terrain'");
 }
+
+// A pack's radius range: radius_min at most radius (the largest, which sets the spacing);
+// a CSV list gives each radius and takes no range, jitter or random count.
+TEST(CaseReader, PackRadiusRange) {
+  const std::string head = test::tank_case(0.01) + "dem:\n  materials: [{name: rock}]\n  packs: [{";
+  const std::string box = "box: {min: [0.05, 0.02, 0.2], max: [0.1, 0.06, 0.25]}, radius: 0.01, material: rock";
+  const auto ok = io::read_case_text(head + box + ", radius_min: 0.006}]\n", "ok.yaml");
+  EXPECT_DOUBLE_EQ(ok.dem.packs[0].radius_min, 0.006);
+  expect_error(head + box + ", radius_min: 0.012}]\n", 9, "dem.packs.0.radius_min", "must not exceed radius");
+  expect_error(head + box + ", random: 10, jitter: 0.1}]\n", 9, "dem.packs.0", "a 'random' pack has none");
+  expect_error(head + "csv: spheres.csv, material: rock, radius_min: 0.006}]\n", 9, "dem.packs.0",
+               "do not apply to a CSV list");
+}

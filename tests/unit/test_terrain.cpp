@@ -6,6 +6,7 @@
 #include "surge/geometry/raster.hpp"
 #include "surge/geometry/reservoir.hpp"
 #include "surge/geometry/slide_body.hpp"
+#include "surge/geometry/sphere_packs.hpp"
 #include "surge/geometry/terrain.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <unistd.h>
 
@@ -60,6 +62,36 @@ void write_ascii(const std::string& path, const Raster& r, bool prj, long nodata
     f << "\n";
   }
   if (prj) std::ofstream(path.substr(0, path.size() - 4) + ".prj") << utm32n_wkt;
+}
+// Top: the plane z = 10 + 0.3 x on 31 x 31 nodes 1 m apart; bottom: 4 m below it on the
+// nodes i, j in [5, 25], on it elsewhere (a slide body of 1764 m^3).
+std::pair<Raster, Raster> slope_slide() {
+  Raster top;
+  top.nx = top.ny = 31;
+  top.dx = top.dy = 1;
+  top.v.resize(31 * 31);
+  for (long j = 0; j < 31; ++j)
+    for (long i = 0; i < 31; ++i) top.at(i, j) = 10 + 0.3 * top.x(i);
+  Raster bottom = top;
+  for (long j = 5; j <= 25; ++j)
+    for (long i = 5; i <= 25; ++i) bottom.at(i, j) -= 4;
+  return {top, bottom};
+}
+
+// True when the sphere lies above the surface: its lowest point above the surface at its
+// centre, at 64 points of its footprint's rim and at the nodes under it.
+bool clear_of(const Raster& bottom, const SphereSpec& s) {
+  const double r = s.radius, z = s.centre.z - r + 1e-9;
+  if (!(z >= surface_height(bottom, s.centre.x, s.centre.y))) return false;
+  for (int a = 0; a < 64; ++a) {
+    const double phi = a * M_PI / 32,
+                 h = surface_height(bottom, s.centre.x + r * std::cos(phi), s.centre.y + r * std::sin(phi));
+    if (h > z) return false;
+  }
+  for (long j = 0; j < bottom.ny; ++j)
+    for (long i = 0; i < bottom.nx; ++i)
+      if (std::hypot(bottom.x(i) - s.centre.x, bottom.y(j) - s.centre.y) <= r && bottom.at(i, j) > z) return false;
+  return true;
 }
 } // namespace
 
@@ -226,4 +258,136 @@ TEST(SlideBody, VolumeAndSpheresBetweenTheSurfaces) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(Raster, HighestUnderADisc) {
+  // On the plane z = 2 + 0.3 x - 0.2 y the highest point under a disc of radius r lies on
+  // its rim, r |grad z| above the centre. A node raised inside the disc is the highest
+  // point; a ridge raised along a grid line through the disc, its top where it crosses.
+  Raster g;
+  g.nx = g.ny = 21;
+  g.v.resize(21 * 21);
+  for (long j = 0; j < 21; ++j)
+    for (long i = 0; i < 21; ++i) g.at(i, j) = 2 + 0.3 * g.x(i) - 0.2 * g.y(j);
+  const double x = 10.3, y = 10.7, r = 1.7, rise = r * std::hypot(0.3, 0.2);
+  const double exact = 2 + 0.3 * x - 0.2 * y + rise, got = highest_under(g, x, y, r);
+  EXPECT_NEAR(got, exact, 1e-12);
+  Raster spike = g;
+  spike.at(11, 11) += 5; // 0.86 m from the centre
+  EXPECT_DOUBLE_EQ(highest_under(spike, x, y, r), spike.at(11, 11));
+  // Flat ground with the nodes of column i = 12 raised by 1 (a ridge along x = 12, rising
+  // from x = 11, 1.7 m from the centre: the disc touches its crest at (12, 10.7); moved
+  // 0.01 m west, it reaches x = 11.99, where the ridge stands 0.99 high).
+  Raster flat = g;
+  for (auto& z : flat.v) z = 0;
+  for (long j = 0; j < 21; ++j) flat.at(12, j) = 1;
+  EXPECT_NEAR(highest_under(flat, x, y, r), 1.0, 1e-12);
+  EXPECT_NEAR(highest_under(flat, x - 0.01, y, r), 0.99, 1e-12);
+  EXPECT_TRUE(std::isnan(highest_under(g, -5, -5, 1)));
+}
+
+TEST(SlideBody, BondedColumnsSitOnTheLatticeAndTouch) {
+  // Aligned columns (bonded bodies): every centre on a lattice level, every sphere clear of
+  // the sliding surface and less than a diameter above it, the same spheres per column as
+  // the columns stacked on the surface, and lattice neighbours along the slope touching.
+  // Stacked on the surface instead, neighbours along x are 0.3 d apart in height: none
+  // touch (what the aligned columns are for).
+  const auto [top, bottom] = slope_slide();
+  const double r = 0.25, d = 2 * r;
+  const Vec3d origin{0, 0, 0.1};
+  const auto on_surface = fill_slide(top, bottom, r, origin, "bottom.tif");
+  const auto aligned = fill_slide(top, bottom, r, origin, "bottom.tif", 0, true);
+  ASSERT_EQ(aligned.spheres.size(), on_surface.spheres.size());
+  for (const auto& s : aligned.spheres) {
+    const double level = (s.centre.z - origin.z) / d - 0.5;
+    ASSERT_NEAR(level, std::round(level), 1e-9);
+    ASSERT_TRUE(clear_of(bottom, s)) << s.centre.x << " " << s.centre.y << " " << s.centre.z;
+  }
+  // Each column's lowest sphere rests less than a diameter above the surface.
+  for (const auto& s : aligned.spheres) {
+    bool lowest = true;
+    for (const auto& o : aligned.spheres)
+      lowest = lowest && !(o.centre.x == s.centre.x && o.centre.y == s.centre.y && o.centre.z < s.centre.z);
+    if (lowest) { ASSERT_LT(s.centre.z - r - highest_under(bottom, s.centre.x, s.centre.y, r), d * 1.001); }
+  }
+  // The share of spheres with a touching neighbour one column along x.
+  auto touching_along_x = [&](const std::vector<SphereSpec>& list) {
+    long n = 0;
+    for (const auto& a : list) {
+      bool t = false;
+      for (const auto& b : list)
+        t = t || (std::fabs(std::fabs(b.centre.x - a.centre.x) - d) < 1e-9 &&
+                  std::fabs(b.centre.y - a.centre.y) < 1e-9 && std::fabs(b.centre.z - a.centre.z) < 1e-9);
+      n += t ? 1 : 0;
+    }
+    return static_cast<double>(n) / static_cast<double>(list.size());
+  };
+  EXPECT_GT(touching_along_x(aligned.spheres), 0.9);
+  EXPECT_LT(touching_along_x(on_surface.spheres), 0.1);
+}
+
+TEST(SlideBody, JitteredColumnsStayClearOfTheSurface) {
+  const auto [top, bottom] = slope_slide();
+  const double r = 0.25, d = 2 * r;
+  const auto plain = fill_slide(top, bottom, r, {0, 0, 0}, "bottom.tif");
+  const auto moved = fill_slide(top, bottom, r, {0, 0, 0}, "bottom.tif", 0.5);
+  ASSERT_EQ(moved.spheres.size(), plain.spheres.size());
+  double largest = 0;
+  for (const auto& s : moved.spheres) {
+    ASSERT_TRUE(clear_of(bottom, s));
+    // Each column moved by at most r / 2 per axis from its lattice point (i + 1/2) d.
+    for (const double c : {s.centre.x, s.centre.y}) {
+      const double off = c - (std::floor(c / d) + 0.5) * d;
+      ASSERT_LE(std::fabs(off), 0.5 * r + 1e-9);
+      largest = std::max(largest, std::fabs(off));
+    }
+  }
+  EXPECT_GT(largest, 0.4 * r); // moved, not merely copied
+}
+
+TEST(SlideBody, RandomPackBetweenTheGrids) {
+  // A random pack of the slide's space: every centre under the pre-failure surface, every
+  // sphere clear of the sliding surface, no two overlapping, as many as asked.
+  const auto [top, bottom] = slope_slide();
+  const double r = 0.4;
+  const auto region = slide_region(top, bottom);
+  EXPECT_NEAR(region.box.min.x, 4, 1e-9);
+  EXPECT_NEAR(region.box.max.x, 26, 1e-9);
+  const auto pack = random_pack(region, r, 1500);
+  ASSERT_EQ(pack.size(), 1500U);
+  for (std::size_t a = 0; a < pack.size(); ++a) {
+    const auto& s = pack[a];
+    ASSERT_LE(s.centre.z, surface_height(top, s.centre.x, s.centre.y));
+    ASSERT_TRUE(clear_of(bottom, s));
+    for (std::size_t b = a + 1; b < pack.size(); ++b) ASSERT_GE(norm(pack[b].centre - s.centre), 2 * r - 1e-12);
+  }
+}
+
+TEST(SpherePacks, RadiiDrawnFromTheRange) {
+  std::vector<SphereSpec> list(20000, SphereSpec{{0, 0, 0}, 1.0});
+  draw_radii(list, 0.6, 1.0);
+  double sum = 0, volume = 0;
+  for (const auto& s : list) {
+    ASSERT_GE(s.radius, 0.6);
+    ASSERT_LE(s.radius, 1.0);
+    sum += s.radius;
+    volume += 4.0 / 3.0 * M_PI * std::pow(s.radius, 3);
+  }
+  EXPECT_NEAR(sum / 20000, 0.8, 0.005); // uniform: the mean within 4 standard errors
+  EXPECT_NEAR(solid_volume(list), volume, 1e-9 * volume);
+}
+
+TEST(Reservoir, CountsTheSurfaceNearTheShore) {
+  // A channel 6 dp wide (y in [3, 9]) and 40 long, water to z = 3: 240 columns; within 2 dp
+  // of a dry column or the lattice's end: the two rows by each bank (160) and, in the two
+  // middle rows, the two columns at each end (8).
+  FluidRegion f;
+  f.reservoir = true;
+  f.level = 3;
+  f.seed_x = 20;
+  f.seed_y = 6;
+  const Box domain{{0, 0, 0}, {40, 12, 4}};
+  const auto fill = fill_reservoir(f, domain, domain.min, 1.0, [](const Vec3d& p) { return p.y < 3 || p.y > 9; });
+  EXPECT_EQ(fill.columns, 240);
+  EXPECT_EQ(fill.near_shore, 168);
 }

@@ -108,8 +108,9 @@ struct DemPackSpec {
   long random_count = 0; // > 0: a random loose pack of this many spheres instead of the lattice
   double settle = 0;     // > 0: settle the pack under gravity (local damping 0.7) for this long [s]
   double radius = 0;
-  double jitter = 0; // lattice: random offset of each sphere, as a fraction of its radius
-  std::string csv;   // x, y, z, r per line (resolved path)
+  double radius_min = 0; // > 0: radii drawn uniformly from [radius_min, radius]
+  double jitter = 0;     // lattice: random offset of each sphere, as a fraction of its radius
+  std::string csv;       // x, y, z, r per line (resolved path)
   // A slide body: between a pre-failure surface (top) and a sliding surface (bottom), two
   // elevation grids (resolved paths; geometry/slide_body.hpp).
   std::string top_path, bottom_path;

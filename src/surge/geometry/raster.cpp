@@ -135,6 +135,58 @@ double surface_height(const Raster& r, double x, double y) {
   return z00 + t * (r.at(i, j + 1) - z00) + s * (z11 - r.at(i, j + 1));
 }
 
+namespace {
+// The highest point of the plane through triangle (p0, p1, p2) (x, y, z each) over the
+// part of the triangle inside the disc (c, radius): the maximum of a linear function over
+// that convex set lies at one of its corners (vertices inside the disc, edges crossing the
+// rim) or on one of its arcs, where the rim points along the plane's rising gradient.
+void raise_to_triangle_max(const double (&p)[3][3], double cx, double cy, double radius, double& top) {
+  auto take = [&](double h) { top = std::max(top, h); };
+  const double r2 = radius * radius;
+  for (int a = 0; a < 3; ++a) {
+    const double* u = p[a];
+    const double* v = p[(a + 1) % 3];
+    if ((u[0] - cx) * (u[0] - cx) + (u[1] - cy) * (u[1] - cy) <= r2) take(u[2]);
+    // |u + t (v - u) - c|^2 = r^2 for t in [0, 1].
+    const double ex = v[0] - u[0], ey = v[1] - u[1], fx = u[0] - cx, fy = u[1] - cy;
+    const double qa = ex * ex + ey * ey, qb = 2 * (ex * fx + ey * fy), qc = fx * fx + fy * fy - r2;
+    const double disc = qb * qb - 4 * qa * qc;
+    if (qa <= 0 || disc < 0) continue;
+    for (const double t : {(-qb - std::sqrt(disc)) / (2 * qa), (-qb + std::sqrt(disc)) / (2 * qa)})
+      if (t >= 0 && t <= 1) take(u[2] + t * (v[2] - u[2]));
+  }
+  // The plane z = z0 + gx (x - x0) + gy (y - y0) and the rim point along its gradient.
+  const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
+  const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
+  const double det = ax * by - ay * bx;
+  if (det == 0) return;
+  const double gx = (az * by - ay * bz) / det, gy = (ax * bz - az * bx) / det, g = std::hypot(gx, gy);
+  if (g == 0) return;
+  const double qx = cx + radius * gx / g - p[0][0], qy = cy + radius * gy / g - p[0][1];
+  const double s = (qx * by - qy * bx) / det, t = (ax * qy - ay * qx) / det; // q = s a + t b
+  if (s >= 0 && t >= 0 && s + t <= 1) take(p[0][2] + s * az + t * bz);
+}
+} // namespace
+
+double highest_under(const Raster& r, double x, double y, double radius) {
+  double top = surface_height(r, x, y);
+  if (std::isnan(top)) top = -std::numeric_limits<double>::infinity();
+  const long i0 = std::max(0L, static_cast<long>(std::floor((x - radius - r.x0) / r.dx)));
+  const long i1 = std::min(r.nx - 2, static_cast<long>(std::floor((x + radius - r.x0) / r.dx)));
+  const long j0 = std::max(0L, static_cast<long>(std::floor((y - radius - r.y0) / r.dy)));
+  const long j1 = std::min(r.ny - 2, static_cast<long>(std::floor((y + radius - r.y0) / r.dy)));
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const double x0 = r.x(i), x1 = r.x(i + 1), y0 = r.y(j), y1 = r.y(j + 1);
+      // The two triangles of surface_height: split along (i, j)-(i + 1, j + 1).
+      const double lower[3][3] = {{x0, y0, r.at(i, j)}, {x1, y0, r.at(i + 1, j)}, {x1, y1, r.at(i + 1, j + 1)}};
+      const double upper[3][3] = {{x0, y0, r.at(i, j)}, {x1, y1, r.at(i + 1, j + 1)}, {x0, y1, r.at(i, j + 1)}};
+      raise_to_triangle_max(lower, x, y, radius, top);
+      raise_to_triangle_max(upper, x, y, radius, top);
+    }
+  return std::isinf(top) ? std::numeric_limits<double>::quiet_NaN() : top;
+}
+
 void write_geotiff(const std::string& path, const Raster& lattice, const std::vector<std::vector<double>>& bands,
                    const std::vector<std::string>& names) {
   register_drivers();

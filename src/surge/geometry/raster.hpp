@@ -35,6 +35,10 @@ Raster crop(const Raster& r, double xlo, double ylo, double xhi, double yhi, con
 // The value on the surface through the nodes, two triangles per pixel square (the diagonal
 // from (i, j) to (i + 1, j + 1)), as terrain_mesh triangulates it; NaN outside the nodes.
 double surface_height(const Raster& r, double x, double y);
+// The surface's highest point over the disc of radius `radius` about (x, y) (exact: each
+// triangle's maximum over its part of the disc); NaN where the disc misses the grid. The
+// part of the disc off the grid is not counted.
+double highest_under(const Raster& r, double x, double y, double radius);
 
 // Writes bands of values on r's lattice (r.v unused) as a GeoTIFF with r's coordinate
 // system, north-up; NaN written as no data. Throws std::runtime_error naming the file.

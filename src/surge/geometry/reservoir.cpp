@@ -81,6 +81,19 @@ ReservoirFill fill_reservoir(const FluidRegion& f, const Box& domain, const Vec3
           wet_column[static_cast<std::size_t>(j * nx + i)] = 1;
         }
   for (const auto w : wet_column) out.columns += w;
+  // Columns with a dry column (or the lattice's edge) within 2 dp: where the lake is this
+  // narrow, fewer than four particles span it.
+  auto wet = [&](long i, long j) {
+    return i >= 0 && j >= 0 && i < nx && j < ny && wet_column[static_cast<std::size_t>(j * nx + i)] != 0;
+  };
+  for (long j = 0; j < ny; ++j)
+    for (long i = 0; i < nx; ++i) {
+      if (!wet(i, j)) continue;
+      bool shore = false;
+      for (long b = -2; b <= 2 && !shore; ++b)
+        for (long a = -2; a <= 2 && !shore; ++a) shore = a * a + b * b <= 4 && !wet(i + a, j + b);
+      out.near_shore += shore ? 1 : 0;
+    }
   return out;
 }
 

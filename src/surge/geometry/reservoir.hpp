@@ -14,6 +14,7 @@ namespace surge::geometry {
 struct ReservoirFill {
   std::vector<Vec3d> points; // lattice points, in z-y-x order
   long columns = 0;          // (x, y) columns holding water: the free surface's area / dp^2
+  long near_shore = 0;       // of these, those within 2 dp of a dry column or the lattice's edge
   std::string seed_problem;  // non-empty: the seed is on dry land (why), no points
 };
 

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 namespace surge::geometry {
 
-SlideBody fill_slide(const Raster& top, const Raster& bottom, double radius, const Vec3d& origin,
-                     const std::string& bottom_name, double tol) {
-  SlideBody out;
+double slide_volume(const Raster& top, const Raster& bottom, const std::string& bottom_name, double tol) {
   // The surfaces must not cross: the bottom's nodes against the top there.
   long crossed = 0;
   double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
@@ -32,12 +31,39 @@ SlideBody fill_slide(const Raster& top, const Raster& bottom, double radius, con
                   crossed, static_cast<double>(crossed) * bottom.dx * bottom.dy, xlo, xhi, ylo, yhi);
     throw InputError(bottom_name, 0, "", msg);
   }
-  // The body's volume: the thickness integrated on the bottom grid's pixels.
+  double volume = 0;
   for (long j = 0; j < bottom.ny; ++j)
     for (long i = 0; i < bottom.nx; ++i) {
       const double t = surface_height(top, bottom.x(i), bottom.y(j));
-      if (!std::isnan(t)) out.volume += std::max(t - bottom.at(i, j), 0.0) * bottom.dx * bottom.dy;
+      if (!std::isnan(t)) volume += std::max(t - bottom.at(i, j), 0.0) * bottom.dx * bottom.dy;
     }
+  return volume;
+}
+
+PackRegion slide_region(const Raster& top, const Raster& bottom) {
+  PackRegion region;
+  region.top = &top;
+  region.bottom = &bottom;
+  Box& b = region.box;
+  b.min = {1e300, 1e300, 1e300};
+  b.max = {-1e300, -1e300, -1e300};
+  for (long j = 0; j < bottom.ny; ++j)
+    for (long i = 0; i < bottom.nx; ++i) {
+      const double x = bottom.x(i), y = bottom.y(j), t = surface_height(top, x, y), z = bottom.at(i, j);
+      if (!(t > z)) continue;
+      b.min = {std::min(b.min.x, x - bottom.dx), std::min(b.min.y, y - bottom.dy), std::min(b.min.z, z)};
+      b.max = {std::max(b.max.x, x + bottom.dx), std::max(b.max.y, y + bottom.dy), std::max(b.max.z, t)};
+    }
+  if (b.min.x > b.max.x) b = Box{}; // the surfaces never part: an empty region
+  return region;
+}
+
+SlideBody fill_slide(const Raster& top, const Raster& bottom, double radius, const Vec3d& origin,
+                     const std::string& bottom_name, double jitter, bool aligned, unsigned seed) {
+  SlideBody out;
+  out.volume = slide_volume(top, bottom, bottom_name);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> shift(-jitter * radius, jitter * radius);
   const double d = 2 * radius;
   const double x0 = std::max(top.x(0), bottom.x(0)), x1 = std::min(top.x(top.nx - 1), bottom.x(bottom.nx - 1));
   const double y0 = std::max(top.y(0), bottom.y(0)), y1 = std::min(top.y(top.ny - 1), bottom.y(bottom.ny - 1));
@@ -55,14 +81,12 @@ SlideBody fill_slide(const Raster& top, const Raster& bottom, double radius, con
       const long k1 = static_cast<long>(std::ceil((t - origin.z) / d - 0.5)) - 1;
       const long n = k1 - k0 + 1;
       if (n <= 0) continue;
-      // The floor: the sliding surface's highest point under the sphere's footprint.
-      double floor = b;
-      for (int a = 0; a < 8; ++a) {
-        const double phi = a * M_PI / 4;
-        const double h = surface_height(bottom, x + radius * std::cos(phi), y + radius * std::sin(phi));
-        if (!std::isnan(h)) floor = std::max(floor, h);
-      }
-      for (long k = 0; k < n; ++k) out.spheres.push_back({{x, y, floor + radius + static_cast<double>(k) * d}, radius});
+      // The floor: the sliding surface's highest point under the (moved) sphere's footprint.
+      const double sx = jitter > 0 ? shift(rng) : 0, sy = jitter > 0 ? shift(rng) : 0;
+      const double floor = std::max(b, highest_under(bottom, x + sx, y + sy, radius));
+      double z = floor + radius;
+      if (aligned) z = origin.z + (std::ceil((z - origin.z) / d - 0.5) + 0.5) * d;
+      for (long k = 0; k < n; ++k) out.spheres.push_back({{x + sx, y + sy, z + static_cast<double>(k) * d}, radius});
     }
   return out;
 }

@@ -58,13 +58,30 @@ double distance_to_mesh(const Mesh& m, const Vec3d& p) {
 bool PackRegion::holds(const Vec3d& c, double r) const {
   for (int k = 0; k < 3; ++k)
     if (c[k] - r < box.min[k] - 1e-12 || c[k] + r > box.max[k] + 1e-12) return false;
+  if (top != nullptr && bottom != nullptr) {
+    // Comparisons written so that NaN (off either grid) rejects the sphere.
+    if (!(c.z <= surface_height(*top, c.x, c.y))) return false;
+    if (!(c.z - r >= highest_under(*bottom, c.x, c.y, r))) return false;
+  }
   return mesh == nullptr || (inside_mesh(*mesh, c) && distance_to_mesh(*mesh, c) >= r);
+}
+
+void draw_radii(std::vector<SphereSpec>& list, double radius_min, double radius_max, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(radius_min, radius_max);
+  for (auto& s : list) s.radius = u(rng);
+}
+
+double solid_volume(const std::vector<SphereSpec>& list) {
+  double v = 0;
+  for (const auto& s : list) v += 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
+  return v;
 }
 
 std::vector<SphereSpec> lattice_pack(const PackRegion& region, double radius, double jitter, unsigned seed) {
   std::vector<SphereSpec> out;
   for (const auto& s : lattice_pack(region.box, radius, jitter, seed))
-    if (region.mesh == nullptr || region.holds(s.centre, radius)) out.push_back(s);
+    if ((region.mesh == nullptr && region.top == nullptr) || region.holds(s.centre, radius)) out.push_back(s);
   return out;
 }
 

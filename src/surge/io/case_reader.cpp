@@ -299,6 +299,15 @@ DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::stri
   return ws;
 }
 
+// radius, and radius_min at most radius.
+void read_radius(const Reader& r, const YAML::Node& pk, const std::string& path, DemPackSpec& ps) {
+  ps.radius = r.require<double>(pk, path, "radius");
+  if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+  if (ps.radius_min > ps.radius)
+    r.fail(pk["radius_min"], path + ".radius_min",
+           "must not exceed radius (the largest radius, which sets the spacing)");
+}
+
 DemPackSpec parse_pack(const Reader& r, const YAML::Node& pk, const std::string& path, const Case& c) {
   r.check_keys(pk, path, keys_under("dem.packs[]"));
   DemPackSpec ps;
@@ -309,21 +318,19 @@ DemPackSpec parse_pack(const Reader& r, const YAML::Node& pk, const std::string&
                       (pk["csv"].IsDefined() ? 1 : 0) + (pk["between"].IsDefined() ? 1 : 0);
   if (regions != 1)
     r.fail(pk, path, "a pack needs exactly one of 'box', 'mesh' (a closed STL), 'between' (two grids) or 'csv'");
+  if (ps.random_count > 0 && ps.jitter > 0) r.fail(pk, path, "'jitter' moves a lattice; a 'random' pack has none");
   if (const auto bt = pk["between"]; bt.IsDefined()) {
     r.check_keys(bt, path + ".between", {"top", "bottom"});
-    if (ps.random_count > 0 || ps.jitter > 0 || ps.settle > 0)
-      r.fail(pk, path, "'random', 'jitter' and 'settle' apply to box and mesh packs, not to a slide between grids");
     if (!bt["top"].IsDefined() || !bt["bottom"].IsDefined())
       r.fail(bt, path + ".between", "needs 'top' (the pre-failure surface) and 'bottom' (the sliding surface)");
     ps.top_path = resolve_file(r, bt["top"], path + ".between.top", "elevation grid ");
     ps.bottom_path = resolve_file(r, bt["bottom"], path + ".between.bottom", "elevation grid ");
-    ps.radius = r.require<double>(pk, path, "radius");
-    if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+    read_radius(r, pk, path, ps);
     return ps;
   }
   if (pk["csv"].IsDefined()) {
-    if (ps.random_count > 0 || ps.jitter > 0)
-      r.fail(pk, path, "'random' and 'jitter' apply to box and mesh packs, not to a CSV list");
+    if (ps.random_count > 0 || ps.jitter > 0 || ps.radius_min > 0)
+      r.fail(pk, path, "'random', 'jitter' and 'radius_min' do not apply to a CSV list (it gives each radius)");
     ps.from_csv = true;
     ps.csv = resolve_file(r, pk["csv"], path + ".csv", "file ");
     return ps;
@@ -335,8 +342,7 @@ DemPackSpec parse_pack(const Reader& r, const YAML::Node& pk, const std::string&
   } else {
     ps.mesh_path = resolve_file(r, pk["mesh"], path + ".mesh", "file ");
   }
-  ps.radius = r.require<double>(pk, path, "radius");
-  if (!(ps.radius > 0)) r.fail(pk["radius"], path + ".radius", "must be positive");
+  read_radius(r, pk, path, ps);
   if (pk["box"].IsDefined())
     for (int k = 0; k < 3; ++k)
       if (ps.box.max[k] - ps.box.min[k] < 2 * ps.radius)

@@ -251,6 +251,12 @@ const std::vector<Field<DemPackSpec>>& pack_fields() {
   using P = DemPackSpec;
   static const std::vector<Field<P>> f{
       {"jitter", &P::jitter, "of the radius", between(0, false, 0.5, true), {}, "random offset of each sphere"},
+      {"radius_min",
+       &P::radius_min,
+       "m",
+       non_negative(),
+       {},
+       "> 0: radii drawn uniformly from [radius_min, radius] (fixed seed; the spacing stays 2 radius)"},
       {"random", &P::random_count, "", non_negative(), {}, "> 0: a random loose pack of this many spheres"},
       {"settle", &P::settle, "s", non_negative(), {}, "settle the pack under gravity for this long"},
       {"velocity", &P::velocity, "m/s", {}, {}, "initial velocity"},

@@ -42,22 +42,15 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   }
   return out;
 }
-// A slide body between two grids (geometry/slide_body.hpp), checked against the DEM's
-// terrain walls; its report goes to s.slides.
-std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& pk, DemSetup& s) {
-  const auto body =
-      geometry::fill_slide(geometry::read_terrain(pk.top_path, c.domain),
-                           geometry::read_terrain(pk.bottom_path, c.domain), pk.radius, c.domain.min, pk.bottom_path);
-  if (body.spheres.empty())
-    throw InputError(c.source, pk.line, "dem.packs.between",
-                     "no sphere of this radius fits between the surfaces; use smaller spheres");
-  // The walls must be the ground beneath the slide: spheres under a terrain wall (the
-  // pre-failure ground given as the wall) would be thrown out of it at the first step.
+// The slide's spheres must lie above the ground of every DEM terrain wall: the walls must
+// be the ground beneath the slide; spheres under a terrain wall (the pre-failure ground
+// given as the wall) would be thrown out of it at the first step.
+void check_slide_above_walls(const Case& c, const DemPackSpec& pk, const std::vector<geometry::SphereSpec>& list) {
   for (const auto& w : c.dem.walls) {
     if (!w.terrain) continue;
     const auto ground = geometry::read_terrain(w.mesh_path, c.domain);
     long under = 0;
-    for (const auto& sp : body.spheres)
+    for (const auto& sp : list)
       under += sp.centre.z < geometry::surface_height(ground, sp.centre.x, sp.centre.y) ? 1 : 0;
     if (under > 0)
       throw InputError(c.source, pk.line, "dem.packs.between",
@@ -66,7 +59,31 @@ std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& p
                            "': the walls must be the ground beneath the slide (its sliding surface), not the "
                            "pre-failure ground");
   }
-  s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius});
+}
+// A slide body between two grids (geometry/slide_body.hpp): columns of the lattice, or a
+// random pack of the space between; its report goes to s.slides (the spheres' volume is
+// filled in once their radii are drawn).
+std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& pk, DemSetup& s) {
+  const auto top = geometry::read_terrain(pk.top_path, c.domain),
+             bottom = geometry::read_terrain(pk.bottom_path, c.domain);
+  geometry::SlideBody body;
+  if (pk.random_count > 0) {
+    body.volume = geometry::slide_volume(top, bottom, pk.bottom_path);
+    body.spheres = geometry::random_pack(geometry::slide_region(top, bottom), pk.radius, pk.random_count);
+    if (static_cast<long>(body.spheres.size()) < pk.random_count)
+      throw InputError(c.source, pk.line, "dem.packs.random",
+                       "only " + std::to_string(body.spheres.size()) + " of " + std::to_string(pk.random_count) +
+                           " spheres fit between the grids at random; lower 'random' or the radius");
+  } else {
+    // Bonded: columns on the lattice's levels, so that neighbours touch and bond (SPEC 3.4).
+    const bool aligned = c.dem.materials[static_cast<std::size_t>(pk.material)].bonded;
+    body = geometry::fill_slide(top, bottom, pk.radius, c.domain.min, pk.bottom_path, pk.jitter, aligned);
+  }
+  if (body.spheres.empty())
+    throw InputError(c.source, pk.line, "dem.packs.between",
+                     "no sphere of this radius fits between the surfaces; use smaller spheres");
+  check_slide_above_walls(c, pk, body.spheres);
+  s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius, 0});
   return body.spheres;
 }
 // The case's contact law, and every material suits it (Hertz-Mindlin: Poisson's ratio
@@ -148,6 +165,8 @@ DemSetup dem_setup(const Case& c) {
         list = geometry::lattice_pack(region, pk.radius, pk.jitter);
       }
     }
+    if (pk.radius_min > 0 && pk.radius_min < pk.radius) geometry::draw_radii(list, pk.radius_min, pk.radius);
+    if (!pk.bottom_path.empty()) s.slides.back().solid = geometry::solid_volume(list);
     if (pk.settle > 0) list = settle_pack(c, s, pk, list);
     for (const auto& sp : list) {
       if (!c.domain.contains(sp.centre))
@@ -168,16 +187,32 @@ void print_slides(const Case& c, const DemSetup& s) {
     const auto& pk = c.dem.packs[static_cast<std::size_t>(sl.pack)];
     const double n = static_cast<double>(sl.spheres), d = 2 * sl.radius;
     const double rho = c.dem.materials[static_cast<std::size_t>(pk.material)].density;
-    const double cells = n * d * d * d, solid = n * M_PI / 6 * d * d * d;
-    std::printf(
-        "slide       pack %d (line %d): %.6g m^3 between the grids; %zu spheres of D = %g m whose lattice cells "
-        "hold %.6g m^3 (%.1f %%); mass %.6g kg (spheres of %g kg/m^3, %.3g of the body's volume)\n",
-        sl.pack, pk.line, sl.volume, sl.spheres, d, cells, 100 * cells / sl.volume, solid * rho, rho,
-        solid / sl.volume);
+    char sizes[64];
+    if (pk.radius_min > 0 && pk.radius_min < pk.radius)
+      std::snprintf(sizes, sizeof sizes, "D = %g..%g m", 2 * pk.radius_min, d);
+    else
+      std::snprintf(sizes, sizeof sizes, "D = %g m", d);
+    std::printf("slide       pack %d (line %d): %.6g m^3 between the grids; %zu spheres of %s", sl.pack, pk.line,
+                sl.volume, sl.spheres, sizes);
+    if (pk.random_count == 0) {
+      const double cells = n * d * d * d;
+      std::printf(" whose lattice cells hold %.6g m^3 (%.1f %%)", cells, 100 * cells / sl.volume);
+    }
+    std::printf("; mass %.6g kg (spheres of %g kg/m^3, %.3g of the body's volume)\n", sl.solid * rho, rho,
+                sl.solid / sl.volume);
+    if (pk.settle > 0) std::printf("            (as placed; settled for %g s before the run)\n", pk.settle);
     if (c.dp > 0 && !c.fluid.empty())
       std::printf("            dp/D = 1/%.3g (the paper's guidance for dense assemblies: dp <= D/6, D/8 better)\n",
                   d / c.dp);
   }
+}
+
+std::string no_bonds_warning(const Case& c, const DemSetup& s, long bonds) {
+  if (!s.bonded || bonds > 0) return "";
+  return "bonded materials, but no two of their spheres touch at the start (within dem.bond_gap = " +
+         std::to_string(c.dem.bond_gap) +
+         " m): jitter, radius_min or a random pack leave gaps; settle the pack or "
+         "widen bond_gap";
 }
 
 std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {

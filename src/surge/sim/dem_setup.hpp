@@ -26,7 +26,8 @@ struct DemSetup {
     int pack;
     double volume;
     std::size_t spheres;
-    double radius;
+    double radius; // the largest
+    double solid;  // the spheres' volume [m^3]
   };
   std::vector<SlideReport> slides;
 };
@@ -41,6 +42,9 @@ std::string dem_step_warning(const Case& c, const dem::DemSolver& solver);
 // surge check's lines on the slide bodies between grids: volume, spheres, the volume their
 // lattice cells hold, mass.
 void print_slides(const Case& c, const DemSetup& s);
+// surge check's warning when bonded materials got no bond: no two of their spheres touch
+// at the start (within dem.bond_gap); empty otherwise.
+std::string no_bonds_warning(const Case& c, const DemSetup& s, long bonds);
 // The spheres' current state, by id, for write_spheres_vtp.
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 // Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.

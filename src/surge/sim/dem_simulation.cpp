@@ -36,9 +36,11 @@ int check_dem(const Case& c) {
   std::printf("case        %s (%s), DEM only\n", c.name.c_str(), c.source.c_str());
   std::printf("spheres     %zu, %zu wall planes, %zu wall triangles, %zu materials\n", s.spheres.size(),
               s.planes.size(), s.triangles.size(), s.materials.size());
-  if (s.bonded)
-    std::printf("bonds       %ld at the start (gap tolerance %g m)\n",
-                solver.bond_touching(static_cast<Real>(c.dem.bond_gap)), c.dem.bond_gap);
+  if (s.bonded) {
+    const long bonds = solver.bond_touching(static_cast<Real>(c.dem.bond_gap));
+    std::printf("bonds       %ld at the start (gap tolerance %g m)\n", bonds, c.dem.bond_gap);
+    if (const std::string w = no_bonds_warning(c, s, bonds); !w.empty()) std::printf("warning     %s\n", w.c_str());
+  }
   const char* scale = "";
   dem::with_contact_law(s.contact_law, [&](auto law) { scale = decltype(law)::time_scale_name; });
   print_slides(c, s);

@@ -208,11 +208,19 @@ int check(const Case& c) {
     if (init.reservoir_columns > 0)
       std::printf("reservoir   free surface %.6g m^2 (%ld lattice columns of dp^2), the water counted above\n",
                   static_cast<double>(init.reservoir_columns) * c.dp * c.dp, init.reservoir_columns);
+    const double narrow =
+        static_cast<double>(init.reservoir_near_shore) / static_cast<double>(std::max(init.reservoir_columns, 1L));
+    if (narrow > 0.5)
+      std::printf("warning     the lake is narrow for dp = %g m: %.0f %% of its surface lies within 2 dp of a shore "
+                  "(as in a channel under 8 dp wide); a smaller dp resolves the flow across it\n",
+                  c.dp, 100 * narrow);
   }
   if (cp) {
     std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "
                 "spheres\n",
                 cp->setup.spheres.size(), cp->bonds, cp->coupling->n_body(), cp->layers, cp->fluid_removed);
+    if (const std::string w = no_bonds_warning(c, cp->setup, cp->bonds); !w.empty())
+      std::printf("warning     %s\n", w.c_str());
     std::printf("DEM step    %.3g s (dt_factor %g): about %.0f DEM sub-steps per SPH step at the first dt\n",
                 static_cast<double>(cp->coupling->dt_dem()), c.dem.dt_factor,
                 std::ceil(dt0 / static_cast<double>(cp->coupling->dt_dem())));

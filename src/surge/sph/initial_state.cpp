@@ -54,6 +54,7 @@ std::vector<Vec3d> fluid_points(const Case& c, const FluidRegion& f, const Meshe
     });
     if (!fill.seed_problem.empty()) throw InputError(c.source, f.line, "fluid.reservoir.seed", fill.seed_problem);
     s.reservoir_columns += fill.columns;
+    s.reservoir_near_shore += fill.near_shore;
     s.fluid_volume_asked += static_cast<double>(fill.points.size()) * c.dp * c.dp * c.dp;
     return std::move(fill.points);
   }

@@ -23,6 +23,7 @@ struct InitialState {
   std::size_t fluid_dropped_by_walls = 0;
   double fluid_volume_asked = 0; // sum of the fluid boxes' volumes (n_fluid dp^3 is what was placed)
   long reservoir_columns = 0;    // lattice columns with reservoir water: its surface area / dp^2
+  long reservoir_near_shore = 0; // of these, those within 2 dp of the shore
   // Ghost nodes of the boundary (wall, then body) particles for sph.boundary: mdbc, as
   // ghost - position, indexed by id - first_boundary_id (fluid ids come first).
   std::uint32_t first_boundary_id = 0;
