@@ -110,6 +110,18 @@ check(abs(slide_volume / slide_integral - 1) < 0.01, f"slide volume {slide_volum
 check(abs(cells / slide_volume - 1) < 0.02, f"{n_spheres} spheres of D = {D} m: their lattice cells hold "
       f"{cells:.0f} m^3 of the {slide_volume:.0f} m^3 ({100 * (cells / slide_volume - 1):+.2f} %, within 2 %)")
 
+# --- the slide bonded: columns on the lattice's levels, so that neighbours in adjacent
+# columns touch and bond too (stacked on the slope, only the spheres of one column touch:
+# fewer bonds than spheres); the same spheres and mass
+bonded = os.path.join(site, "bonded.yaml")
+with open(bonded, "w") as f:
+    f.write(open(case).read().replace("phi: 30, restitution: 0.3}", "phi: 30, restitution: 0.3, bond: {cn: 1e5, cs: 1e5}}"))
+r = surge("check", bonded)
+mb = re.search(r"spheres\s+(\d+), (\d+) bonds", r.stdout)
+check(r.returncode == 0 and mb is not None and int(mb.group(1)) == n_spheres and int(mb.group(2)) > 1.5 * n_spheres,
+      f"bonded slide: {mb.group(2) if mb else '?'} bonds among {mb.group(1) if mb else '?'} spheres (more than 1.5 "
+      f"per sphere) " + r.stderr[-200:])
+
 # --- a run to 1 s, restarted to 2 s, against a straight run to 2 s; then on to 9 s
 out, straight = os.path.join(WORK, "run"), os.path.join(WORK, "straight")
 r = surge("run", case, "--out", out, "--quiet", "--threads", "2", "--set", "time.end=1")

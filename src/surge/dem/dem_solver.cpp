@@ -91,41 +91,47 @@ SURGE_HD inline PairResult pair_terms(const PairInput& in, const typename L::Pai
   const Vec3 droll = tangential(dtheta, n);
   const Vec3 dtwist = n * dot(dtheta, n);
   const Real kr = in.k_roll * in.rmin * in.rmin * ks, kt = in.k_twist * in.rmin * in.rmin * ks;
-  PairResult r;
-  r.broke = broke;
-  r.slot.bonded = bonded ? 1U : 0U;
-  r.slot.shear = sh.spring;
-  Vec3 m_roll{}, m_twist{};
+  Vec3 m_roll{}, m_twist{}, roll{}, twist{};
   if (kr > 0) {
     const ResistanceUpdate u =
         resistance_moment(rotate_into_plane(old.roll, n), droll, kr, in.k_roll_max * fn * in.rmin);
-    r.slot.roll = u.theta;
+    roll = u.theta;
     m_roll = u.moment;
   }
   if (kt > 0) {
     const ResistanceUpdate u = resistance_moment(n * dot(old.twist, n), dtwist, kt, in.k_twist_max * fn * in.rmin);
-    r.slot.twist = u.theta;
+    twist = u.theta;
     m_twist = u.moment;
   }
-  r.force_a = n * fn + sh.force;
-  r.torque_a = cross(ca, sh.force) + m_roll + m_twist;
-  r.torque_b = cross(cb, sh.force * Real(-1)) - m_roll - m_twist;
-  return r;
+  // Every member given (no zeroing of the whole result first: it showed in the profile).
+  return PairResult{n * fn + sh.force, cross(ca, sh.force) + m_roll + m_twist,
+                    cross(cb, sh.force * Real(-1)) - m_roll - m_twist,
+                    ContactSlot{no_partner, sh.spring, roll, twist, bonded ? 1U : 0U}, broke};
 }
 
-// Pair properties from the two materials and radii that every law shares (the law's own
-// constants come from L::pair and L::wall).
-SURGE_HD inline void mix_properties(const Material& ma, const Material& mb, Real ra, Real rb, PairInput& in) {
-
-  in.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
-  in.k_roll = (ma.k_roll + mb.k_roll) / 2;
-  in.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
-  in.k_twist = (ma.k_twist + mb.k_twist) / 2;
-  in.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
-  in.rmin = ra < rb ? ra : rb;
+// Pair properties from the two materials that every law shares (the law's own constants
+// come from L::pair and L::wall); mixed once per material pair (DemView::mixed).
+SURGE_HD inline MixedPair mix(const Material& ma, const Material& mb) {
+  MixedPair m;
+  m.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
+  m.k_roll = (ma.k_roll + mb.k_roll) / 2;
+  m.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
+  m.k_twist = (ma.k_twist + mb.k_twist) / 2;
+  m.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
   const bool bondable = ma.bonded && mb.bonded;
-  in.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
-  in.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
+  m.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
+  m.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
+  return m;
+}
+SURGE_HD inline void set_mixed(const MixedPair& m, Real ra, Real rb, PairInput& in) {
+  in.tan_phi = m.tan_phi;
+  in.k_roll = m.k_roll;
+  in.k_roll_max = m.k_roll_max;
+  in.k_twist = m.k_twist;
+  in.k_twist_max = m.k_twist_max;
+  in.rmin = ra < rb ? ra : rb;
+  in.bond_cn = m.bond_cn;
+  in.bond_cs = m.bond_cs;
 }
 
 // The wall triangles sphere (x, r) touches, one per point of contact: face contacts
@@ -192,16 +198,14 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, int i, const Mater
   Material unbondable = mw;
   unbondable.bonded = false;
   const typename L::Pair law = L::wall(mi, unbondable, in.ra, v.mass[i]);
-  mix_properties(mi, unbondable, in.ra, in.ra, in); // as a sphere of the same radius (SPEC §3)
+  set_mixed(mix(mi, unbondable), in.ra, in.ra, in); // as a sphere of the same radius (SPEC §3)
   return {in, law};
 }
 
 // The pair terms of sphere a (the lower id) with b (sorted indices) for pair p: the
 // history of the pair and its stored law, the rest from the two spheres and materials.
 template <class L>
-SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, int a, int b, std::uint32_t p, Real dist,
-                                       Real dt) {
-  const Material ma = mats[v.material[a]], mb = mats[v.material[b]];
+SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint32_t p, Real dist, Real dt) {
   PairInput in;
   const Vec3 dab = v.pos[a] - v.pos[b];
   in.n = dab * (1 / dist);
@@ -212,7 +216,7 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, const Material* mats, i
   in.wa = v.omega[a];
   in.vb = v.vel[b];
   in.wb = v.omega[b];
-  mix_properties(ma, mb, in.ra, in.rb, in);
+  set_mixed(v.mixed[v.material[a] * v.n_materials + v.material[b]], in.ra, in.rb, in);
   return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), v.hist[p], dt);
 }
 
@@ -244,7 +248,7 @@ int list_spheres(const DemView& v, const neighbour::GridView& g, const ContactSl
 // Pass 1 of a step: each pair once, by its A sphere (lower id), from the history of its
 // pair: the history is updated in place and the forces written beside it.
 template <class L>
-void pair_pass(const DemView& v, const Material* mats, Real dt) {
+void pair_pass(const DemView& v, Real dt) {
   par::parallel_for_uneven(
       v.n, SURGE_LAMBDA(int i) {
         const Vec3 xi = v.pos[i];
@@ -261,7 +265,7 @@ void pair_pass(const DemView& v, const Material* mats, Real dt) {
             v.pair[p] = PairForce{};
             return;
           }
-          const PairResult r = sphere_pair<L>(v, mats, i, j, p, dist, dt);
+          const PairResult r = sphere_pair<L>(v, i, j, p, dist, dt);
           v.hist[p] = r.slot;
           v.hist[p].partner = partner;
           v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
@@ -281,7 +285,6 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         Vec3 f{}, t{};
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
-        const Material mi = mats[v.material[i]];
         neighbour::for_each_listed<max_contacts>(v.list, v.id, i,
                                                  [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
                                                    if (at == neighbour::no_pair) return; // the partner's list was full
@@ -303,7 +306,7 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
         int wused = 0;
         auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-          const WallPair<L> w = wall_pair_input<L>(v, i, mi, mats[material], n, un);
+          const WallPair<L> w = wall_pair_input<L>(v, i, mats[v.material[i]], mats[material], n, un);
           ContactSlot s{};
           for (int k = 0; k < max_wall_slots; ++k)
             if (old_w[k].partner == partner) s = old_w[k];
@@ -476,6 +479,10 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
     with_contact_law(law_index_, [&](auto law) { m.damping = decltype(law)::damping(m.restitution); });
   }
   par::upload(materials_, materials_host_);
+  std::vector<MixedPair> mixed;
+  for (const auto& a : materials_host_)
+    for (const auto& b : materials_host_) mixed.push_back(detail::mix(a, b));
+  par::upload(mixed_, mixed);
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
   par::upload(planes_, planes);
@@ -571,6 +578,8 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
 DemView DemSolver::view() {
   DemView v{};
   v.n = n_;
+  v.mixed = mixed_.data();
+  v.n_materials = static_cast<int>(materials_host_.size());
   for_each_sphere_field(*this, v, [](auto& b, auto& ptr, int, unsigned) { ptr = b.data(); });
   v.hist = hist_.data();
   v.pair = pair_.data();
@@ -645,7 +654,7 @@ void DemSolver::step(Real dt) {
     const auto t = par::timed(par::Phase::DemContacts);
     with_contact_law(law_index_, [&](auto law) {
       using L = decltype(law);
-      detail::pair_pass<L>(v, materials_.data(), dt);
+      detail::pair_pass<L>(v, dt);
       detail::sphere_pass<L>(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_, dt);
     });
   }

@@ -108,8 +108,18 @@ struct SumWallLoads {
   }
 };
 
+// What two materials' contacts share, whatever the radii (friction, rolling and twisting
+// resistance, bond strengths; SPEC 3): a table of n x n, mixed once.
+struct MixedPair {
+  Real tan_phi;
+  Real k_roll, k_roll_max, k_twist, k_twist_max;
+  Real bond_cn, bond_cs; // 0 unless both materials bond
+};
+
 struct DemView {
   int n = 0;
+  const MixedPair* mixed; // n_materials x n_materials
+  int n_materials;
   Vec3 *pos, *vel, *omega, *force, *torque;
   Real* quat; // 4 per sphere (w, x, y, z)
   Real *radius, *mass, *inertia;
@@ -208,6 +218,7 @@ private:
 
   std::vector<Material> materials_host_;
   par::Buffer<Material> materials_;
+  par::Buffer<MixedPair> mixed_; // by material pair (MixedPair)
   par::Buffer<Plane> planes_;
   int n_planes_ = 0;
   par::Buffer<WallTriangle> triangles_;
