@@ -222,18 +222,9 @@ TEST(Reservoir, FillsTheConnectedLakeToItsLevel) {
 }
 
 TEST(SlideBody, VolumeAndSpheresBetweenTheSurfaces) {
-  // Top: a plane z = 10 + 0.3 x; bottom: 4 m below it on the nodes i, j in [5, 25], on it
-  // elsewhere. The thickness is linear on each triangle, so the node sum is its exact
+  // slope_slide: the thickness is linear on each triangle, so the node sum is its exact
   // integral: 21 x 21 nodes x 4 m x 1 m^2 = 1764 m^3.
-  Raster top;
-  top.nx = top.ny = 31;
-  top.dx = top.dy = 1;
-  top.v.resize(31 * 31);
-  for (long j = 0; j < 31; ++j)
-    for (long i = 0; i < 31; ++i) top.at(i, j) = 10 + 0.3 * top.x(i);
-  Raster bottom = top;
-  for (long j = 5; j <= 25; ++j)
-    for (long i = 5; i <= 25; ++i) bottom.at(i, j) -= 4;
+  auto [top, bottom] = slope_slide();
   const double r = 0.25;
   const auto body = fill_slide(top, bottom, r, {0, 0, 0}, "bottom.tif");
   EXPECT_NEAR(body.volume, 1764.0, 1e-9);
