@@ -211,8 +211,8 @@ std::string no_bonds_warning(const Case& c, const DemSetup& s, long bonds) {
   if (!s.bonded || bonds > 0) return "";
   return "bonded materials, but no two of their spheres touch at the start (within dem.bond_gap = " +
          std::to_string(c.dem.bond_gap) +
-         " m): jitter, radius_min or a random pack leave gaps; settle the pack or "
-         "widen bond_gap";
+         " m): jitter, radius_min or a random pack leave gaps; settle the pack first (a wider bond_gap bonds across "
+         "gaps, and such a bond starts in tension)";
 }
 
 std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {
