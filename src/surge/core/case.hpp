@@ -118,6 +118,8 @@ struct DemPackSpec {
   Vec3d velocity{};
   bool fixed = false; // held in place (forces on it are still computed)
   int line = 0;
+  // Whether radii are drawn from [radius_min, radius].
+  [[nodiscard]] bool radius_range() const { return radius_min > 0 && radius_min < radius; }
 };
 
 struct DemWallSpec {

@@ -184,7 +184,7 @@ struct WallPair {
   typename L::Pair law;
 };
 template <class L>
-SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, int i, const Material& mi, const Material& mw,
+SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* mats, int i, int wall_material,
                                             const Vec3& n, Real un) {
   PairInput in;
   in.n = n;
@@ -195,10 +195,12 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, int i, const Mater
   in.wa = v.omega[i];
   in.vb = Vec3{};
   in.wb = Vec3{};
-  Material unbondable = mw;
+  Material unbondable = mats[wall_material];
   unbondable.bonded = false;
-  const typename L::Pair law = L::wall(mi, unbondable, in.ra, v.mass[i]);
-  set_mixed(mix(mi, unbondable), in.ra, in.ra, in); // as a sphere of the same radius (SPEC §3)
+  const typename L::Pair law = L::wall(mats[v.material[i]], unbondable, in.ra, v.mass[i]);
+  MixedPair mixed = v.mixed[v.material[i] * v.n_materials + wall_material];
+  mixed.bond_cn = mixed.bond_cs = 0;  // a wall never bonds
+  set_mixed(mixed, in.ra, in.ra, in); // as a sphere of the same radius (SPEC §3)
   return {in, law};
 }
 
@@ -306,7 +308,7 @@ void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, in
         for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
         int wused = 0;
         auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-          const WallPair<L> w = wall_pair_input<L>(v, i, mats[v.material[i]], mats[material], n, un);
+          const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un);
           ContactSlot s{};
           for (int k = 0; k < max_wall_slots; ++k)
             if (old_w[k].partner == partner) s = old_w[k];
@@ -365,7 +367,6 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
         const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
-        const Material mi = mats[v.material[i]];
         for (int k = 0; k < max_wall_slots; ++k) {
           const std::uint32_t partner = row[k].partner;
           if (partner == no_partner) continue;
@@ -393,7 +394,7 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
             continue;
           }
           if (!(un > 0)) continue;
-          const WallPair<L> w = wall_pair_input<L>(v, i, mi, mats[material], n, un);
+          const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un);
           const PairResult r = pair_terms<L>(w.in, w.law, row[k], 0);
           out.force -= r.force_a;
           out.moment -= cross(xi - about, r.force_a) + r.torque_a;

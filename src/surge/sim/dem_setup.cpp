@@ -60,20 +60,28 @@ void check_slide_above_walls(const Case& c, const DemPackSpec& pk, const std::ve
                            "pre-failure ground");
   }
 }
+// A lattice pack of the region, or a random one of pk.random_count spheres (all of them
+// placed, or an error).
+std::vector<geometry::SphereSpec> region_pack(const Case& c, const DemPackSpec& pk,
+                                              const geometry::PackRegion& region) {
+  if (pk.random_count == 0) return geometry::lattice_pack(region, pk.radius, pk.jitter);
+  auto list = geometry::random_pack(region, pk.radius, pk.random_count);
+  if (static_cast<long>(list.size()) < pk.random_count)
+    throw InputError(c.source, pk.line, "dem.packs",
+                     "only " + std::to_string(list.size()) + " of " + std::to_string(pk.random_count) +
+                         " spheres of radius " + std::to_string(pk.radius) +
+                         " fit in the pack's region at random; lower 'random' or enlarge the region");
+  return list;
+}
 // A slide body between two grids (geometry/slide_body.hpp): columns of the lattice, or a
-// random pack of the space between; its report goes to s.slides (the spheres' volume is
-// filled in once their radii are drawn).
-std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& pk, DemSetup& s) {
+// random pack of the space between.
+geometry::SlideBody slide_pack(const Case& c, const DemPackSpec& pk) {
   const auto top = geometry::read_terrain(pk.top_path, c.domain),
              bottom = geometry::read_terrain(pk.bottom_path, c.domain);
   geometry::SlideBody body;
   if (pk.random_count > 0) {
     body.volume = geometry::slide_volume(top, bottom, pk.bottom_path);
-    body.spheres = geometry::random_pack(geometry::slide_region(top, bottom), pk.radius, pk.random_count);
-    if (static_cast<long>(body.spheres.size()) < pk.random_count)
-      throw InputError(c.source, pk.line, "dem.packs.random",
-                       "only " + std::to_string(body.spheres.size()) + " of " + std::to_string(pk.random_count) +
-                           " spheres fit between the grids at random; lower 'random' or the radius");
+    body.spheres = region_pack(c, pk, geometry::slide_region(top, bottom));
   } else {
     // Bonded: columns on the lattice's levels, so that neighbours touch and bond (SPEC 3.4).
     const bool aligned = c.dem.materials[static_cast<std::size_t>(pk.material)].bonded;
@@ -83,8 +91,39 @@ std::vector<geometry::SphereSpec> slide_pack(const Case& c, const DemPackSpec& p
     throw InputError(c.source, pk.line, "dem.packs.between",
                      "no sphere of this radius fits between the surfaces; use smaller spheres");
   check_slide_above_walls(c, pk, body.spheres);
-  s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), body.volume, body.spheres.size(), pk.radius, 0});
-  return body.spheres;
+  return body;
+}
+// The spheres of pack pk (absolute centres), radii drawn and settled as it asks; a slide's
+// report goes to s.slides.
+std::vector<geometry::SphereSpec> pack_spheres(const Case& c, const DemPackSpec& pk, DemSetup& s) {
+  std::vector<geometry::SphereSpec> list;
+  double slide_volume = -1;
+  if (pk.from_csv) {
+    list = geometry::read_sphere_csv(pk.csv);
+  } else if (!pk.bottom_path.empty()) {
+    auto body = slide_pack(c, pk);
+    list = std::move(body.spheres);
+    slide_volume = body.volume;
+  } else if (!pk.mesh_path.empty()) {
+    const geometry::Mesh mesh = geometry::read_stl(pk.mesh_path);
+    if (mesh.tris.empty()) throw InputError(pk.mesh_path, 0, "", "the mesh has no triangles");
+    geometry::PackRegion region{{mesh.tris[0].a, mesh.tris[0].a}, &mesh};
+    for (const auto& t : mesh.tris)
+      for (const Vec3d& v : {t.a, t.b, t.c})
+        for (int k = 0; k < 3; ++k) {
+          region.box.min[k] = std::min(region.box.min[k], v[k]);
+          region.box.max[k] = std::max(region.box.max[k], v[k]);
+        }
+    list = region_pack(c, pk, region);
+  } else {
+    list = region_pack(c, pk, geometry::PackRegion{pk.box, nullptr});
+  }
+  if (pk.radius_range()) geometry::draw_radii(list, pk.radius_min, pk.radius);
+  if (slide_volume >= 0)
+    s.slides.push_back({static_cast<int>(&pk - c.dem.packs.data()), slide_volume, list.size(), pk.radius,
+                        geometry::solid_volume(list)});
+  if (pk.settle > 0) list = settle_pack(c, s, pk, list);
+  return list;
 }
 // The case's contact law, and every material suits it (Hertz-Mindlin: Poisson's ratio
 // below 0.5, no bonds; the linear spring: a positive stiffness ratio).
@@ -134,40 +173,7 @@ DemSetup dem_setup(const Case& c) {
     ++mesh_index;
   }
   for (const auto& pk : c.dem.packs) {
-    std::vector<geometry::SphereSpec> list;
-    if (pk.from_csv) {
-      list = geometry::read_sphere_csv(pk.csv);
-    } else if (!pk.bottom_path.empty()) {
-      list = slide_pack(c, pk, s);
-    } else {
-      geometry::PackRegion region{pk.box, nullptr};
-      geometry::Mesh mesh;
-      if (!pk.mesh_path.empty()) {
-        mesh = geometry::read_stl(pk.mesh_path);
-        if (mesh.tris.empty()) throw InputError(pk.mesh_path, 0, "", "the mesh has no triangles");
-        region.box = {mesh.tris[0].a, mesh.tris[0].a};
-        for (const auto& t : mesh.tris)
-          for (const Vec3d& v : {t.a, t.b, t.c})
-            for (int k = 0; k < 3; ++k) {
-              region.box.min[k] = std::min(region.box.min[k], v[k]);
-              region.box.max[k] = std::max(region.box.max[k], v[k]);
-            }
-        region.mesh = &mesh;
-      }
-      if (pk.random_count > 0) {
-        list = geometry::random_pack(region, pk.radius, pk.random_count);
-        if (static_cast<long>(list.size()) < pk.random_count)
-          throw InputError(c.source, pk.line, "dem.packs",
-                           "only " + std::to_string(list.size()) + " of " + std::to_string(pk.random_count) +
-                               " spheres of radius " + std::to_string(pk.radius) +
-                               " fit in the pack's region at random; lower 'random' or enlarge the region");
-      } else {
-        list = geometry::lattice_pack(region, pk.radius, pk.jitter);
-      }
-    }
-    if (pk.radius_min > 0 && pk.radius_min < pk.radius) geometry::draw_radii(list, pk.radius_min, pk.radius);
-    if (!pk.bottom_path.empty()) s.slides.back().solid = geometry::solid_volume(list);
-    if (pk.settle > 0) list = settle_pack(c, s, pk, list);
+    const auto list = pack_spheres(c, pk, s);
     for (const auto& sp : list) {
       if (!c.domain.contains(sp.centre))
         throw InputError(c.source, pk.line, "dem.packs",
@@ -188,7 +194,7 @@ void print_slides(const Case& c, const DemSetup& s) {
     const double n = static_cast<double>(sl.spheres), d = 2 * sl.radius;
     const double rho = c.dem.materials[static_cast<std::size_t>(pk.material)].density;
     char sizes[64];
-    if (pk.radius_min > 0 && pk.radius_min < pk.radius)
+    if (pk.radius_range())
       std::snprintf(sizes, sizeof sizes, "D = %g..%g m", 2 * pk.radius_min, d);
     else
       std::snprintf(sizes, sizeof sizes, "D = %g m", d);
