@@ -18,7 +18,7 @@
 // Bonds (the paper's CFM) are part of the linear law only; surge refuses bonded
 // materials with this law.
 #pragma once
-#include "surge/core/types.hpp"
+#include "surge/core/lanes.hpp"
 #include "surge/dem/contact_linear_spring.hpp"
 #include "surge/dem/material.hpp"
 
@@ -36,12 +36,15 @@ struct HertzMindlin {
   static constexpr const char* name = "hertz_mindlin";
   static constexpr const char* time_scale_name = "Rayleigh time";
   static constexpr bool damps_shear = true;
-  struct Pair {
-    Real k;  // 4/3 E* sqrt(R*)
-    Real kt; // 8 G* sqrt(R*)
-    Real cn; // alpha sqrt(m* k)
-    Real ct; // alpha sqrt(m* 2/3 kt)
+  // The per-pair constants, for one pair or a batch (core/lanes.hpp).
+  template <class T>
+  struct PairT {
+    T k;  // 4/3 E* sqrt(R*)
+    T kt; // 8 G* sqrt(R*)
+    T cn; // alpha sqrt(m* k)
+    T ct; // alpha sqrt(m* 2/3 kt)
   };
+  using Pair = PairT<Real>;
   static Real damping(Real restitution) { return static_cast<Real>(hertz_damping_factor(restitution)); }
   static const char* unsuitable(const Material& m, const char** key) {
     *key = "nu";
@@ -73,18 +76,21 @@ struct HertzMindlin {
   [[nodiscard]] SURGE_HD static Pair wall(const Material& sphere, const Material& w, Real r, Real m) {
     return mixed(sphere, w, r, m);
   }
-  [[nodiscard]] SURGE_HD static Real normal_force(const Pair& p, Real un, Real dun, bool bonded) {
+  // (A batch computes every lane and keeps 0 where un <= 0.)
+  template <class T, class M>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T normal_force(const PairT<T>& p, T un, T dun, M bonded) {
     (void)bonded; // never bonded (unsuitable)
-    if (!(un > 0)) return 0;
-    const Real s = std::sqrt(un);
-    const Real f = p.k * s * un + p.cn * std::sqrt(s) * dun;
-    return f < 0 ? Real(0) : f;
+    const T s = sqrt_of(un);
+    const T f = p.k * s * un + p.cn * sqrt_of(s) * dun;
+    return pick(both(un > 0, negate(f < 0)), f, T{});
   }
-  [[nodiscard]] SURGE_HD static Real shear_stiffness(const Pair& p, Real un) {
-    return un > 0 ? p.kt * std::sqrt(un) : Real(0);
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T shear_stiffness(const PairT<T>& p, T un) {
+    return pick(un > 0, p.kt * sqrt_of(un), T{});
   }
-  [[nodiscard]] SURGE_HD static Real shear_damping(const Pair& p, Real un) {
-    return un > 0 ? p.ct * std::sqrt(std::sqrt(un)) : Real(0);
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T shear_damping(const PairT<T>& p, T un) {
+    return pick(un > 0, p.ct * sqrt_of(sqrt_of(un)), T{});
   }
   // The Rayleigh time of the sphere.
   static Real time_scale(const Material& m, Real r, Real mass) {

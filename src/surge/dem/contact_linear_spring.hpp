@@ -10,7 +10,7 @@
 // rolling / twisting: M = K theta, K = k_{r/t} r'^2 k_s, |M| <= k^max |F_n| r', at the
 //           cap theta is reset so that K theta = M_max.
 #pragma once
-#include "surge/core/types.hpp"
+#include "surge/core/lanes.hpp"
 #include "surge/dem/material.hpp"
 
 #include <cmath>
@@ -55,59 +55,74 @@ struct NormalSpringDashpot {
 
   // Normal force along n (positive pushes apart) for overlap un and overlap rate dun
   // (dun > 0 while approaching). Unbonded contacts are clipped at zero.
-  [[nodiscard]] SURGE_HD Real force(Real un, Real dun, bool bonded) const {
-    const Real f = kn * un + cn * dun;
-    return (!bonded && f < 0) ? Real(0) : f;
+  [[nodiscard]] SURGE_HD Real force(Real un, Real dun, bool bonded) const { return force_of(kn, cn, un, dun, bonded); }
+  // The same for one contact or a batch of them (core/lanes.hpp).
+  template <class T, class M>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T force_of(T kn, T cn, T un, T dun, M bonded) {
+    const T f = kn * un + cn * dun;
+    return pick(both(negate(bonded), f < 0), T{}, f);
   }
 };
 
+// The shear, rolling and twisting springs below are written once for one contact
+// (T = Real) and for a batch (T = a vector of Reals, core/lanes.hpp): their branches are
+// selects, lane by lane, with the scalar path's bits.
+
 // Removes from v its component along the unit normal n.
-[[nodiscard]] SURGE_HD inline Vec3 tangential(const Vec3& v, const Vec3& n) { return v - n * dot(v, n); }
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE Vec3T<T> tangential(const Vec3T<T>& v, const Vec3T<T>& n) {
+  return v - n * dot(v, n);
+}
 
 // Stored shear force rotated into the tangent plane of the new normal, keeping its magnitude.
-[[nodiscard]] SURGE_HD inline Vec3 rotate_into_plane(const Vec3& fs, const Vec3& n) {
-  const Vec3 t = tangential(fs, n);
-  const Real lt = norm(t), lf = norm(fs);
-  return lt > 0 ? t * (lf / lt) : Vec3{};
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE Vec3T<T> rotate_into_plane(const Vec3T<T>& fs, const Vec3T<T>& n) {
+  const Vec3T<T> t = tangential(fs, n);
+  const T lt = norm_of(t), lf = norm_of(fs);
+  return pick(lt > 0, t * (lf / lt), Vec3T<T>{});
 }
 
 // Scales v back to length at most cap (Coulomb limit, rolling cap).
-[[nodiscard]] SURGE_HD inline Vec3 cap_length(const Vec3& v, Real cap) {
-  const Real l = norm(v);
-  return l > cap && l > 0 ? v * (cap / l) : v;
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE Vec3T<T> cap_length(const Vec3T<T>& v, T cap) {
+  const T l = norm_of(v);
+  return pick(both(l > cap, l > 0), v * (cap / l), v);
 }
 
 // Incremental shear spring: previous force (any orientation), new normal n, tangential
 // relative displacement of the contact point du over the step, Coulomb limit.
 // Returns the new shear force and whether the contact slipped.
-struct ShearUpdate {
-  Vec3 force;
-  bool slipped;
+template <class T>
+struct ShearUpdateT {
+  Vec3T<T> force;
+  MaskOf<T> slipped;
 };
-[[nodiscard]] SURGE_HD inline ShearUpdate shear_force(const Vec3& fs_old, const Vec3& n, const Vec3& du, Real ks,
-                                                      Real limit) {
-  const Vec3 trial = rotate_into_plane(fs_old, n) - tangential(du, n) * ks;
-  const Real l = norm(trial);
-  if (l > limit) return {cap_length(trial, limit), true};
-  return {trial, false};
+using ShearUpdate = ShearUpdateT<Real>;
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE ShearUpdateT<T> shear_force(const Vec3T<T>& fs_old, const Vec3T<T>& n,
+                                                                const Vec3T<T>& du, T ks, T limit) {
+  const Vec3T<T> trial = rotate_into_plane(fs_old, n) - tangential(du, n) * ks;
+  const MaskOf<T> slipped = norm_of(trial) > limit;
+  return {pick(slipped, cap_length(trial, limit), trial), slipped};
 }
 
 // Rolling or twisting spring with a cap: theta accumulates the relative rotation;
 // the moment is K theta capped at m_max, and theta is reset to m_max / K at the cap.
-struct ResistanceUpdate {
-  Vec3 theta;
-  Vec3 moment;
+template <class T>
+struct ResistanceUpdateT {
+  Vec3T<T> theta;
+  Vec3T<T> moment;
 };
-[[nodiscard]] SURGE_HD inline ResistanceUpdate resistance_moment(const Vec3& theta_old, const Vec3& dtheta, Real k,
-                                                                 Real m_max) {
-  Vec3 theta = theta_old + dtheta;
-  Vec3 m = theta * k;
-  const Real lm = norm(m);
-  if (lm > m_max && lm > 0) {
-    m = m * (m_max / lm);
-    theta = m * (1 / k);
-  }
-  return {theta, -m}; // the moment opposes the relative rotation
+template <class T>
+[[nodiscard]] SURGE_HD SURGE_INLINE ResistanceUpdateT<T> resistance_moment(const Vec3T<T>& theta_old,
+                                                                           const Vec3T<T>& dtheta, T k, T m_max) {
+  const Vec3T<T> theta = theta_old + dtheta;
+  const Vec3T<T> m = theta * k;
+  const T lm = norm_of(m);
+  const MaskOf<T> capped = both(lm > m_max, lm > 0);
+  const Vec3T<T> m_capped = m * (m_max / lm);
+  // the moment opposes the relative rotation
+  return {pick(capped, m_capped * (1 / k), theta), -pick(capped, m_capped, m)};
 }
 
 // The paper's law as a contact law (contact_law.hpp): the two-spring stiffnesses and the
@@ -117,9 +132,12 @@ struct LinearSpring {
   static constexpr const char* name = "linear_spring";
   static constexpr const char* time_scale_name = "sqrt(m / k_n)";
   static constexpr bool damps_shear = false;
-  struct Pair {
-    Real kn, ks, cn;
+  // The per-pair constants, for one pair or a batch (core/lanes.hpp).
+  template <class T>
+  struct PairT {
+    T kn, ks, cn;
   };
+  using Pair = PairT<Real>;
   // A material's damping constant: the damping ratio of its restitution.
   static Real damping(Real restitution) { return damping_ratio(restitution); }
   // Why a material does not suit this law (nullptr: it does); the key named.
@@ -139,19 +157,19 @@ struct LinearSpring {
   [[nodiscard]] SURGE_HD static Pair wall(const Material& sphere, const Material& w, Real r, Real m) {
     return pair(sphere, w, r, r, m);
   }
-  [[nodiscard]] SURGE_HD static Real normal_force(const Pair& p, Real un, Real dun, bool bonded) {
-    NormalSpringDashpot law;
-    law.kn = p.kn;
-    law.cn = p.cn;
-    return law.force(un, dun, bonded);
+  template <class T, class M>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T normal_force(const PairT<T>& p, T un, T dun, M bonded) {
+    return NormalSpringDashpot::force_of(p.kn, p.cn, un, dun, bonded);
   }
-  [[nodiscard]] SURGE_HD static Real shear_stiffness(const Pair& p, Real un) {
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T shear_stiffness(const PairT<T>& p, T un) {
     (void)un;
     return p.ks;
   }
-  [[nodiscard]] SURGE_HD static Real shear_damping(const Pair& p, Real un) {
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE static T shear_damping(const PairT<T>& p, T un) {
     (void)p, (void)un;
-    return 0;
+    return T{};
   }
   // sqrt(m / k_n) of a sphere against an equal one (the step is dem.dt_factor times the
   // smallest; SPEC §3).

@@ -1,4 +1,9 @@
 #include "surge/dem/dem_solver.hpp"
+#include "surge/dem/pair_terms.hpp"
+#if defined(SURGE_SIMD)
+#include "surge/dem/dem_pairs_simd.hpp"
+#include "surge/par/simd_isa.hpp"
+#endif
 
 #include "surge/algo/algo.hpp"
 
@@ -14,125 +19,6 @@
 
 namespace surge::dem {
 namespace detail {
-
-// The pair terms of one contact, for the canonical side A (lower id, or the sphere
-// against a plane). Everything both sides need comes from here, computed once per side
-// with identical inputs, so the two sides agree exactly.
-struct PairResult {
-  Vec3 force_a;     // total contact force on A
-  Vec3 torque_a;    // about A's centre
-  Vec3 torque_b;    // about B's centre (zero for planes)
-  ContactSlot slot; // A-side history after this step
-  bool broke = false;
-};
-
-struct PairInput {
-  Vec3 n;      // unit normal, from B to A
-  Real un;     // overlap
-  Real ra, rb; // radii (rb: 0 for a plane)
-  Vec3 va, wa, vb, wb;
-  Real tan_phi;
-  Real k_roll, k_roll_max, k_twist, k_twist_max;
-  Real rmin;             // r' = min(r_A, r_B)
-  Real bond_cn, bond_cs; // bond strengths (used while the slot is bonded)
-};
-
-// The shear force of law L: the incremental spring with the Coulomb limit on it, or, for
-// a law that damps shear, on the spring and the damping together (the spring then keeps
-// what the limit leaves of the total). `spring` is the history to keep.
-struct ShearTerms {
-  Vec3 force, spring;
-  bool slipped;
-};
-template <class L>
-SURGE_HD inline ShearTerms shear_terms(const Vec3& old, const Vec3& n, const Vec3& vrel, Real dt, Real ks, Real cs,
-                                       Real limit) {
-  if constexpr (!L::damps_shear) {
-    (void)cs;
-    const ShearUpdate sh = shear_force(old, n, vrel * dt, ks, limit);
-    return {sh.force, sh.force, sh.slipped};
-  } else {
-    const Vec3 vt = tangential(vrel, n);
-    const Vec3 spring = rotate_into_plane(old, n) - vt * (dt * ks);
-    const Vec3 total = spring - vt * cs;
-    if (!(norm(total) > limit)) return {total, spring, false};
-    const Vec3 capped = cap_length(total, limit);
-    return {capped, capped + vt * cs, true};
-  }
-}
-
-template <class L>
-SURGE_HD inline PairResult pair_terms(const PairInput& in, const typename L::Pair& law, const ContactSlot& old,
-                                      Real dt) {
-  const Vec3 n = in.n;
-  const Vec3 ca = n * (-(in.ra - in.un / 2)); // contact point relative to A's centre
-  const Vec3 cb = n * (in.rb - in.un / 2);    // ... relative to B's centre
-  const Vec3 vrel = (in.va + cross(in.wa, ca)) - (in.vb + cross(in.wb, cb));
-  const Real dun = -dot(vrel, n);
-  bool bonded = old.bonded != 0, broke = false;
-  Real fn = L::normal_force(law, in.un, dun, bonded);
-  const Real area = in.rmin * in.rmin;
-  if (bonded && -fn > in.bond_cn * area) { // tension beyond C_n r'^2
-    bonded = false;
-    broke = true;
-    fn = L::normal_force(law, in.un, dun, false);
-  }
-  const Real fn_abs = fn < 0 ? -fn : fn;
-  const Real ks = L::shear_stiffness(law, in.un), cs = L::shear_damping(law, in.un);
-  ShearTerms sh =
-      shear_terms<L>(old.shear, n, vrel, dt, ks, cs, fn_abs * in.tan_phi + (bonded ? in.bond_cs * area : 0));
-  if (bonded && sh.slipped) { // shear beyond |F_n| tan(phi) + C_s r'^2: the bond breaks, friction remains
-    bonded = false;
-    broke = true;
-    fn = L::normal_force(law, in.un, dun, false);
-    sh = shear_terms<L>(old.shear, n, vrel, dt, ks, cs, fn * in.tan_phi);
-  }
-  const Vec3 dtheta = (in.wa - in.wb) * dt;
-  const Vec3 droll = tangential(dtheta, n);
-  const Vec3 dtwist = n * dot(dtheta, n);
-  const Real kr = in.k_roll * in.rmin * in.rmin * ks, kt = in.k_twist * in.rmin * in.rmin * ks;
-  Vec3 m_roll{}, m_twist{}, roll{}, twist{};
-  if (kr > 0) {
-    const ResistanceUpdate u =
-        resistance_moment(rotate_into_plane(old.roll, n), droll, kr, in.k_roll_max * fn * in.rmin);
-    roll = u.theta;
-    m_roll = u.moment;
-  }
-  if (kt > 0) {
-    const ResistanceUpdate u = resistance_moment(n * dot(old.twist, n), dtwist, kt, in.k_twist_max * fn * in.rmin);
-    twist = u.theta;
-    m_twist = u.moment;
-  }
-  // Every member given (no zeroing of the whole result first: it showed in the profile).
-  return PairResult{n * fn + sh.force, cross(ca, sh.force) + m_roll + m_twist,
-                    cross(cb, sh.force * Real(-1)) - m_roll - m_twist,
-                    ContactSlot{no_partner, sh.spring, roll, twist, bonded ? 1U : 0U}, broke};
-}
-
-// Pair properties from the two materials that every law shares (the law's own constants
-// come from L::pair and L::wall); mixed once per material pair (DemView::mixed).
-SURGE_HD inline MixedPair mix(const Material& ma, const Material& mb) {
-  MixedPair m;
-  m.tan_phi = ma.tan_phi < mb.tan_phi ? ma.tan_phi : mb.tan_phi;
-  m.k_roll = (ma.k_roll + mb.k_roll) / 2;
-  m.k_roll_max = (ma.k_roll_max + mb.k_roll_max) / 2;
-  m.k_twist = (ma.k_twist + mb.k_twist) / 2;
-  m.k_twist_max = (ma.k_twist_max + mb.k_twist_max) / 2;
-  const bool bondable = ma.bonded && mb.bonded;
-  m.bond_cn = bondable ? (ma.bond_cn < mb.bond_cn ? ma.bond_cn : mb.bond_cn) : 0;
-  m.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
-  return m;
-}
-SURGE_HD inline void set_mixed(const MixedPair& m, Real ra, Real rb, PairInput& in) {
-  in.tan_phi = m.tan_phi;
-  in.k_roll = m.k_roll;
-  in.k_roll_max = m.k_roll_max;
-  in.k_twist = m.k_twist;
-  in.k_twist_max = m.k_twist_max;
-  in.rmin = ra < rb ? ra : rb;
-  in.bond_cn = m.bond_cn;
-  in.bond_cs = m.bond_cs;
-}
 
 // The wall triangles sphere (x, r) touches, one per point of contact: face contacts
 // first; an edge or vertex contact is dropped when an accepted triangle already
@@ -219,7 +105,7 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint
   in.vb = v.vel[b];
   in.wb = v.omega[b];
   set_mixed(v.mixed[v.material[a] * v.n_materials + v.material[b]], in.ra, in.rb, in);
-  return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), v.hist[p], dt);
+  return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), springs_of(v.hist[p]), dt);
 }
 
 // Each pair's law constants (L::pair), once per list, written by the pair's A sphere: the
@@ -268,73 +154,87 @@ void pair_pass(const DemView& v, Real dt) {
             return;
           }
           const PairResult r = sphere_pair<L>(v, i, j, p, dist, dt);
-          v.hist[p] = r.slot;
-          v.hist[p].partner = partner;
+          v.hist[p] = slot_of(r.springs, partner);
           v.pair[p] = {r.force_a, r.torque_a, r.torque_b, 1U | (r.broke ? 2U : 0U)};
         });
       });
 }
 
+// The wall contacts of sphere i (planes, then mesh triangles), added to its force f,
+// torque t and contact count; their histories by partner id in its few wall slots.
+struct WallsView {
+  const Material* mats;
+  const Plane* planes;
+  int n_planes;
+  const WallTriangle* tris;
+  TriangleGridView tri_grid;
+};
+template <class L>
+SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, int i, Vec3& f, Vec3& t, int& used) {
+  const Vec3 xi = v.pos[i];
+  const Real ri = v.radius[i];
+  ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
+  bool near_plane = false; // most spheres touch no wall: their empty slots stay as they are
+  for (int k = 0; k < w.n_planes; ++k) near_plane = near_plane || dot(xi - w.planes[k].point, w.planes[k].normal) < ri;
+  if (!near_plane && !w.tri_grid.start) {
+    for (int k = 0; k < max_wall_slots; ++k)
+      if (wrow[k].partner != no_partner) wrow[k] = ContactSlot{};
+    return;
+  }
+  ContactSlot old_w[max_wall_slots];
+  for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
+  int wused = 0;
+  auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
+    const WallPair<L> wp = wall_pair_input<L>(v, w.mats, i, material, n, un);
+    ContactSlot s{};
+    for (int k = 0; k < max_wall_slots; ++k)
+      if (old_w[k].partner == partner) s = old_w[k];
+    const PairResult r = pair_terms<L>(wp.in, wp.law, springs_of(s), dt);
+    f += r.force_a;
+    t += r.torque_a;
+    ++used;
+    if (wused < max_wall_slots) {
+      wrow[wused] = slot_of(r.springs, partner);
+      ++wused;
+    }
+  };
+  for (int k = 0; k < w.n_planes; ++k) {
+    const Plane pl = w.planes[k];
+    const Real dist = dot(xi - pl.point, pl.normal);
+    if (dist < ri) wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material);
+  }
+  if (w.tri_grid.start) {
+    WallCandidate touched[max_wall_candidates];
+    const int nt = wall_contacts(w.tris, w.tri_grid, xi, ri, touched);
+    for (int k = 0; k < nt; ++k)
+      wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
+           triangle_partner | static_cast<std::uint32_t>(touched[k].tri), w.tris[touched[k].tri].material);
+  }
+  for (int k = wused; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
+}
+
 // Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
 // B-side ones negated, read at the A side's slot), then its wall contacts.
 template <class L>
-void sphere_pass(const DemView& v, const Material* mats, const Plane* planes, int n_planes, const WallTriangle* tris,
-                 TriangleGridView tri_grid, Real dt) {
+void sphere_pass(const DemView& v, const WallsView& walls, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         int used = 0;
         std::uint32_t broken = 0;
         Vec3 f{}, t{};
-        const Vec3 xi = v.pos[i];
-        const Real ri = v.radius[i];
+        // Without a branch on the pair (half of a packing's listed pairs touch, half do
+        // not): a pair not touching holds +0 forces, and adding +0 or subtracting it (as
+        // adding x * -1) leaves a sum's bits as they are.
         neighbour::for_each_listed<max_contacts>(v.list, v.id, i,
                                                  [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
                                                    if (at == neighbour::no_pair) return; // the partner's list was full
                                                    const PairForce& pf = v.pair[at];
-                                                   if (!(pf.flags & 1U)) return;
-                                                   ++used;
-                                                   if (pf.flags & 2U) ++broken;
-                                                   if (i_is_a) {
-                                                     f += pf.force_a;
-                                                     t += pf.torque_a;
-                                                   } else {
-                                                     f -= pf.force_a;
-                                                     t += pf.torque_b;
-                                                   }
+                                                   used += static_cast<int>(pf.flags & 1U);
+                                                   broken += (pf.flags >> 1) & 1U;
+                                                   f += pf.force_a * (i_is_a ? Real(1) : Real(-1));
+                                                   t += i_is_a ? pf.torque_a : pf.torque_b;
                                                  });
-        // Wall contacts: history by partner id in the sphere's few wall slots.
-        ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
-        ContactSlot old_w[max_wall_slots];
-        for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
-        int wused = 0;
-        auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-          const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un);
-          ContactSlot s{};
-          for (int k = 0; k < max_wall_slots; ++k)
-            if (old_w[k].partner == partner) s = old_w[k];
-          const PairResult r = pair_terms<L>(w.in, w.law, s, dt);
-          f += r.force_a;
-          t += r.torque_a;
-          ++used;
-          if (wused < max_wall_slots) {
-            wrow[wused] = r.slot;
-            wrow[wused].partner = partner;
-            ++wused;
-          }
-        };
-        for (int k = 0; k < n_planes; ++k) {
-          const Plane pl = planes[k];
-          const Real dist = dot(xi - pl.point, pl.normal);
-          if (dist < ri) wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material);
-        }
-        if (tri_grid.start) {
-          WallCandidate touched[max_wall_candidates];
-          const int nt = wall_contacts(tris, tri_grid, xi, ri, touched);
-          for (int k = 0; k < nt; ++k)
-            wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
-                 triangle_partner | static_cast<std::uint32_t>(touched[k].tri), tris[touched[k].tri].material);
-        }
-        for (int k = wused; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
+        wall_terms<L>(v, walls, dt, i, f, t, used);
         v.force[i] = f;
         v.torque[i] = t;
         v.broken[i] += broken;
@@ -395,7 +295,7 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
           }
           if (!(un > 0)) continue;
           const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un);
-          const PairResult r = pair_terms<L>(w.in, w.law, row[k], 0);
+          const PairResult r = pair_terms<L>(w.in, w.law, springs_of(row[k]), Real(0));
           out.force -= r.force_a;
           out.moment -= cross(xi - about, r.force_a) + r.torque_a;
         }
@@ -487,6 +387,25 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
   par::upload(planes_, planes);
+#if defined(SURGE_SIMD)
+  set_pair_pass(par::simd_isa());
+#endif
+}
+
+bool DemSolver::set_pair_pass(const char* isa) {
+  if (std::strcmp(isa, "off") == 0) {
+    batched_ = nullptr;
+    pair_pass_name_ = "off";
+    return true;
+  }
+#if defined(SURGE_SIMD)
+  if (const PairPassFn f = batched_pair_pass(law_index_, isa)) {
+    batched_ = f;
+    pair_pass_name_ = std::strcmp(isa, "avx2") == 0 ? "avx2" : "sse2";
+    return true;
+  }
+#endif
+  return false;
 }
 
 void DemSolver::set_wall_triangles(const std::vector<WallTriangle>& t) {
@@ -585,6 +504,7 @@ DemView DemSolver::view() {
   v.hist = hist_.data();
   v.pair = pair_.data();
   v.law = law_.data();
+  v.list.pair_b = pair_b_.data();
   return v;
 }
 
@@ -630,9 +550,11 @@ void DemSolver::rebuild_list() {
   hist_.resize(n_pairs_);
   pair_.resize(n_pairs_);
   law_.resize(n_pairs_);
+  pair_b_.resize(n_pairs_);
   v = view();
   neighbour::fill_pairs<max_contacts>(v.list, v.id, n_, hist_old_.data(), hist_.data());
   neighbour::link_pairs<max_contacts>(v.list, v.id, n_);
+  neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
   with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
   par::copy(pos_built_, pos_);
   list_valid_ = true;
@@ -655,8 +577,21 @@ void DemSolver::step(Real dt) {
     const auto t = par::timed(par::Phase::DemContacts);
     with_contact_law(law_index_, [&](auto law) {
       using L = decltype(law);
+#if defined(SURGE_SIMD)
+      if (batched_) {
+        const int blocks = (n_ + pair_pass_block - 1) / pair_pass_block;
+        const PairPassFn f = batched_;
+        const int n = n_;
+        par::parallel_for_uneven(
+            blocks, [=](int b) { f(v, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); });
+      } else {
+        detail::pair_pass<L>(v, dt);
+      }
+#else
       detail::pair_pass<L>(v, dt);
-      detail::sphere_pass<L>(v, materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_, dt);
+#endif
+      detail::sphere_pass<L>(
+          v, detail::WallsView{materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_}, dt);
     });
   }
   {
@@ -758,8 +693,11 @@ void DemSolver::restore(const std::string& bytes) {
   n_pairs_ = static_cast<std::uint32_t>(pairs);
   pair_.resize(pairs);
   law_.resize(pairs);
+  pair_b_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
   with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(view(), materials_.data()); });
+  const DemView v = view();
+  neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
   list_valid_ = valid == 1;
 }
 

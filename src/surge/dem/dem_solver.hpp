@@ -137,6 +137,12 @@ struct DemView {
   Vec3* pos_built;                    // positions when the list was built
 };
 
+// A CPU pair pass for spheres [begin, end): evaluates their pairs (their A side) and
+// writes each pair's history and forces, as detail::pair_pass does (dem_pairs_simd.hpp).
+using PairPassFn = void (*)(const DemView& v, Real dt, int begin, int end);
+// The spheres the solver hands to one call.
+constexpr int pair_pass_block = 64;
+
 class DemSolver {
 public:
   // contact_law: an index into ContactLaws (contact_law.hpp; 0, the linear spring, by
@@ -181,6 +187,11 @@ public:
   [[nodiscard]] std::vector<std::uint32_t> contact_counts() const; // by id
   [[nodiscard]] std::vector<std::uint32_t> intact_bonds() const;   // id pairs (lower id first), flattened
   [[nodiscard]] int size() const { return n_; }
+  // The pair pass: "avx2" or "sse2" (the batched copies, in builds with SURGE_SIMD on a CPU
+  // that has the set) or "off" (the scalar pass, the one CUDA runs); false, and nothing
+  // changed, where the copy is not there. By default the widest, or SURGE_SIMD's choice.
+  bool set_pair_pass(const char* isa);
+  [[nodiscard]] const char* pair_pass() const { return pair_pass_name_; }
   // True when every sphere position is finite (a reduction; nothing is copied to the host).
   [[nodiscard]] bool finite();
   DemView view();
@@ -231,7 +242,9 @@ private:
   void build_triangle_grid();
   Vec3 gravity_{};
   Real local_damping_ = 0;
-  int law_index_ = 0; // the contact law, an index into ContactLaws
+  int law_index_ = 0;            // the contact law, an index into ContactLaws
+  PairPassFn batched_ = nullptr; // the CPU's batched pair pass (null: the scalar one)
+  const char* pair_pass_name_ = "off";
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   int n_ = 0;
@@ -242,7 +255,7 @@ private:
   par::Buffer<Vec3> ext_force_, ext_torque_;
   par::Buffer<std::uint32_t> id_, tmpu_, broken_, ncontact_;
   par::Buffer<ContactSlot> hist_, hist_old_, wall_hist_; // pairs; the last list's (the sort's scratch); walls
-  par::Buffer<std::uint32_t> nbr_, nnbr_, entry_, pair_begin_, pair_count_;
+  par::Buffer<std::uint32_t> nbr_, nnbr_, entry_, pair_begin_, pair_count_, pair_b_;
   par::Buffer<PairForce> pair_;
   par::Buffer<PairLaw> law_;
   std::uint32_t n_pairs_ = 0;

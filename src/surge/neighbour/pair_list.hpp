@@ -20,6 +20,7 @@ struct PairListView {
   std::uint32_t* nnbr;                    // listed partners per item
   std::uint32_t* entry;                   // Max per item: the pair of each listed partner
   std::uint32_t *pair_begin, *pair_count; // the pairs an item is A of
+  std::uint32_t* pair_b;                  // by pair: the B item's index (pair_partners)
 };
 
 // f(k, j, pair, i_is_a) for each listed partner j of item i, in list order (pair:
@@ -127,6 +128,17 @@ void link_pairs(const PairListView& l, const std::uint32_t* id, int n) {
             if (l.nbr[jb + q] == static_cast<std::uint32_t>(i)) at = l.entry[jb + q];
           l.entry[base + k] = at;
         }
+      });
+}
+
+// Each pair's B item (pair_b), from the A sides' entries: pairs walked without the list.
+template <int Max>
+void pair_partners(const PairListView& l, const std::uint32_t* id, int n) {
+  par::parallel_for(
+      n, SURGE_LAMBDA(int i) {
+        for_each_listed<Max>(l, id, i, [&](std::uint32_t, int j, std::uint32_t p, bool i_is_a) {
+          if (i_is_a) l.pair_b[p] = static_cast<std::uint32_t>(j);
+        });
       });
 }
 

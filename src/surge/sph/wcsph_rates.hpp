@@ -13,6 +13,7 @@
 // Wall and body particles sum over fluid neighbours only (dynamic boundary particles).
 // Each particle i writes only its own rates, so results do not depend on thread order.
 #pragma once
+#include "surge/core/lanes.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/particles/particle_store.hpp"
 #include "surge/sph/boundary/no_penetration.hpp"
@@ -47,12 +48,7 @@ struct Rates {
 
 // The formulas below are written once for T = Real (one pair at a time: the scalar and
 // CUDA paths) and for T = a SIMD vector of Reals (a batch of pairs, one per lane:
-// wcsph_rates_batched.inc). `m ? a : b` and the arithmetic operators work lane by lane on
-// GCC's vector types; `splat` makes a T of a Real.
-template <class T>
-[[nodiscard]] SURGE_HD SURGE_INLINE T splat(Real x) {
-  return T{} + x;
-}
+// wcsph_rates_batched.inc); core/lanes.hpp says how.
 
 // The sums particle i accumulates over its pairs (each pair's term as in the header).
 template <class T>

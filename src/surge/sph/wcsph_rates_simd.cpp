@@ -1,5 +1,7 @@
 #include "surge/sph/wcsph_rates_simd.hpp"
 
+#include "surge/par/simd_isa.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -37,21 +39,11 @@ namespace sse2 {
 } // namespace sse2
 
 RatesFn batched_rates(const char* isa) {
-  if (std::strcmp(isa, "avx2") == 0) return __builtin_cpu_supports("avx2") ? &avx2::rates_range : nullptr;
-  if (std::strcmp(isa, "sse2") == 0) return &sse2::rates_range;
-  return nullptr;
+  if (!par::simd_isa_here(isa)) return nullptr;
+  return std::strcmp(isa, "avx2") == 0 ? &avx2::rates_range : &sse2::rates_range;
 }
 
-const char* batched_rates_name() {
-  static const char* name = [] {
-    const bool avx2_here = __builtin_cpu_supports("avx2") != 0;
-    const char* env = std::getenv("SURGE_SIMD");
-    if (env && std::strcmp(env, "off") == 0) return "off";
-    if (env && std::strcmp(env, "sse2") == 0) return "sse2";
-    return avx2_here ? "avx2" : "sse2"; // unset, "avx2" or anything else: the widest there is
-  }();
-  return name;
-}
+const char* batched_rates_name() { return par::simd_isa(); }
 
 RatesFn batched_rates() {
   static const RatesFn f = batched_rates(batched_rates_name());
