@@ -382,7 +382,10 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
   par::upload(materials_, materials_host_);
   std::vector<MixedPair> mixed;
   for (const auto& a : materials_host_)
-    for (const auto& b : materials_host_) mixed.push_back(detail::mix(a, b));
+    for (const auto& b : materials_host_) {
+      mixed.push_back(detail::mix(a, b));
+      resists_ = resists_ || mixed.back().k_roll > 0 || mixed.back().k_twist > 0;
+    }
   par::upload(mixed_, mixed);
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
@@ -500,6 +503,7 @@ DemView DemSolver::view() {
   v.n = n_;
   v.mixed = mixed_.data();
   v.n_materials = static_cast<int>(materials_host_.size());
+  v.resists = resists_;
   for_each_sphere_field(*this, v, [](auto& b, auto& ptr, int, unsigned) { ptr = b.data(); });
   v.hist = hist_.data();
   v.pair = pair_.data();
@@ -583,7 +587,8 @@ void DemSolver::step(Real dt) {
         const PairPassFn f = batched_;
         const int n = n_;
         par::parallel_for_uneven(
-            blocks, [=](int b) { f(v, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); });
+            blocks, [=](int b) { f(v, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); },
+            4); // 256 spheres at a time
       } else {
         detail::pair_pass<L>(v, dt);
       }

@@ -120,6 +120,7 @@ struct DemView {
   int n = 0;
   const MixedPair* mixed; // n_materials x n_materials
   int n_materials;
+  bool resists; // some pair of materials has rolling or twisting resistance
   Vec3 *pos, *vel, *omega, *force, *torque;
   Real* quat; // 4 per sphere (w, x, y, z)
   Real *radius, *mass, *inertia;
@@ -230,6 +231,7 @@ private:
   std::vector<Material> materials_host_;
   par::Buffer<Material> materials_;
   par::Buffer<MixedPair> mixed_; // by material pair (MixedPair)
+  bool resists_ = false;         // DemView::resists
   par::Buffer<Plane> planes_;
   int n_planes_ = 0;
   par::Buffer<WallTriangle> triangles_;

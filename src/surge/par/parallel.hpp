@@ -115,15 +115,17 @@ void parallel_for(int n, F f) {
 // fluid particle has ~60 neighbours, a wall particle far from water none). Particles
 // sorted by cell put the water in one part of the index range, so equal static halves
 // leave one CPU thread idle; dynamic chunks balance them. Results do not depend on the
-// schedule, since each i writes only to itself.
+// schedule, since each i writes only to itself. `chunk`: the indices a thread takes at
+// a time (fewer where each index is a block of particles).
 template <class F>
-void parallel_for_uneven(int n, F f) {
+void parallel_for_uneven(int n, F f, int chunk = 256) {
 #if defined(SURGE_BACKEND_CUDA)
+  (void)chunk;
   parallel_for(n, f);
 #else
   if (n <= 0) return;
   const devcheck::Open access;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, chunk)
   for (int i = 0; i < n; ++i) f(i);
 #endif
 }
