@@ -219,21 +219,29 @@ template <class L>
 void sphere_pass(const DemView& v, const WallsView& walls, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
-        int used = 0;
-        std::uint32_t broken = 0;
-        Vec3 f{}, t{};
+        std::uint32_t flags = 0, broken = 0;
         // Without a branch on the pair (half of a packing's listed pairs touch, half do
         // not): a pair not touching holds +0 forces, and adding +0 or subtracting it (as
-        // adding x * -1) leaves a sum's bits as they are.
+        // adding x * -1) leaves a sum's bits as they are. The sums in plain scalars: as
+        // Vec3s captured by the lambda they lived in memory.
+        Real fx = 0, fy = 0, fz = 0, tx = 0, ty = 0, tz = 0;
         neighbour::for_each_listed<max_contacts>(v.list, v.id, i,
                                                  [&](std::uint32_t, int, std::uint32_t at, bool i_is_a) {
                                                    if (at == neighbour::no_pair) return; // the partner's list was full
                                                    const PairForce& pf = v.pair[at];
-                                                   used += static_cast<int>(pf.flags & 1U);
+                                                   flags += pf.flags & 1U;
                                                    broken += (pf.flags >> 1) & 1U;
-                                                   f += pf.force_a * (i_is_a ? Real(1) : Real(-1));
-                                                   t += i_is_a ? pf.torque_a : pf.torque_b;
+                                                   const Real sign = i_is_a ? Real(1) : Real(-1);
+                                                   const Vec3& tq = i_is_a ? pf.torque_a : pf.torque_b;
+                                                   fx += pf.force_a.x * sign;
+                                                   fy += pf.force_a.y * sign;
+                                                   fz += pf.force_a.z * sign;
+                                                   tx += tq.x;
+                                                   ty += tq.y;
+                                                   tz += tq.z;
                                                  });
+        Vec3 f{fx, fy, fz}, t{tx, ty, tz};
+        int used = static_cast<int>(flags);
         wall_terms<L>(v, walls, dt, i, f, t, used);
         v.force[i] = f;
         v.torque[i] = t;
