@@ -1,10 +1,11 @@
-// The DEM's batched pair pass (dem_pairs_batched.inc: touching pairs 8 or 4 at a time)
-// against the scalar one (detail::pair_pass, the one CUDA runs): each pair is evaluated
-// alone, lane by lane with the scalar operations, so every sphere's state, force, torque
-// and bond must be bitwise equal after a run that crosses every branch of the contact
-// law: bonds that break in tension and in shear, contacts that slip, rolling and
-// twisting springs at their caps, two materials, a floor, both laws, and batch tails of
-// every length (the number of touching pairs per flush varies from block to block).
+// The DEM's batched passes (dem_batched.inc: touching pairs, and spheres, 8 or 4 at a
+// time) against the scalar ones (detail::pair_pass and integrate, the ones CUDA runs):
+// each pair and sphere is computed alone, lane by lane with the scalar operations, so
+// every sphere's state, force, torque and bond must be bitwise equal after a run that
+// crosses every branch of the contact law: bonds that break in tension and in shear,
+// contacts that slip, rolling and twisting springs at their caps, one or two materials,
+// fixed spheres, a floor, both laws, and batch tails of every length (the number of
+// touching pairs per flush varies from block to block).
 #include "dem_closed_form.hpp"
 
 #include "surge/dem/dem_solver.hpp"
@@ -30,8 +31,9 @@ struct Outcome {
 };
 
 // A block of 8 x 8 x 6 spheres of two materials (the lower half bonded, with rolling
-// and twisting resistance) thrown onto a floor with random velocities and spins.
-Outcome run(const char* pass, int law) {
+// and twisting resistance; or all of the first, `one_material`) thrown onto a floor with
+// random velocities and spins, a few of them fixed.
+Outcome run(const char* pass, int law, bool one_material = false) {
   Material a = test::grains(1e6f, 0.2f, 0.5f), b = test::grains(2e6f, 0.3f, 0.8f);
   a.tan_phi = 0.4f;
   b.tan_phi = 0.7f;
@@ -57,8 +59,12 @@ Outcome run(const char* pass, int law) {
       for (int i = 0; i < 8; ++i) {
         const Vec3 x{0.0199f * static_cast<Real>(i) + jitter(rng), 0.0199f * static_cast<Real>(j) + jitter(rng),
                      -0.039f + 0.0199f * static_cast<Real>(k)};
-        sp.push_back(
-            {x, {nd(rng), nd(rng), nd(rng)}, {nd(rng) * 20, nd(rng) * 20, nd(rng) * 20}, 0.01f, k < 3 ? 0 : 1});
+        sp.push_back({x,
+                      {nd(rng), nd(rng), nd(rng)},
+                      {nd(rng) * 20, nd(rng) * 20, nd(rng) * 20},
+                      0.01f,
+                      k < 3 || one_material ? 0 : 1,
+                      (i + j + k) % 17 == 0});
       }
   s.set_spheres(sp);
   Outcome o;
@@ -96,14 +102,14 @@ void expect_same(const Outcome& a, const Outcome& b) {
   EXPECT_EQ(a.broken, b.broken);
 }
 
-void compare_passes(int law) {
-  const Outcome scalar = run("off", law);
+void compare_passes(int law, bool one_material = false) {
+  const Outcome scalar = run("off", law, one_material);
   int compared = 0;
   for (const char* isa : {"sse2", "avx2"}) {
     DemSolver probe({test::grains(1e6f, 0.3f, 0.5f)}, {}, Vec3{}, Vec3{-1, -1, -1}, Vec3{1, 1, 1}, law);
     if (!probe.set_pair_pass(isa)) continue; // not built, or not on this CPU
     SCOPED_TRACE(isa);
-    expect_same(run(isa, law), scalar);
+    expect_same(run(isa, law, one_material), scalar);
     ++compared;
   }
   if (compared == 0) GTEST_SKIP() << "no batched pair pass in this build";
@@ -119,6 +125,9 @@ void compare_passes(int law) {
 TEST(DemBatched, LinearSpringWithBondsRollingAndTwistingGivesTheScalarBits) { compare_passes(0); }
 
 TEST(DemBatched, HertzMindlinGivesTheScalarBits) { compare_passes(1); }
+
+// One material: the batched pass takes the material pair from the table once.
+TEST(DemBatched, OneBondedMaterialGivesTheScalarBits) { compare_passes(0, true); }
 
 TEST(DemBatched, UnknownPassIsRefusedAndChangesNothing) {
   DemSolver s({test::grains(1e6f, 0.2f, 0.5f)}, {}, Vec3{}, Vec3{-1, -1, -1}, Vec3{1, 1, 1});

@@ -1,7 +1,8 @@
 #include "surge/dem/dem_solver.hpp"
+#include "surge/dem/integration.hpp"
 #include "surge/dem/pair_terms.hpp"
 #if defined(SURGE_SIMD)
-#include "surge/dem/dem_pairs_simd.hpp"
+#include "surge/dem/dem_simd.hpp"
 #include "surge/par/simd_isa.hpp"
 #endif
 
@@ -173,12 +174,12 @@ template <class L>
 SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, int i, Vec3& f, Vec3& t, int& used) {
   const Vec3 xi = v.pos[i];
   const Real ri = v.radius[i];
-  ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
+  ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
   bool near_plane = false; // most spheres touch no wall: their empty slots stay as they are
   for (int k = 0; k < w.n_planes; ++k) near_plane = near_plane || dot(xi - w.planes[k].point, w.planes[k].normal) < ri;
   if (!near_plane && !w.tri_grid.start) {
-    for (int k = 0; k < max_wall_slots; ++k)
-      if (wrow[k].partner != no_partner) wrow[k] = ContactSlot{};
+    if (wrow[0].partner != no_partner) // (slots are held from the first on)
+      for (int k = 0; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
     return;
   }
   ContactSlot old_w[max_wall_slots];
@@ -272,7 +273,7 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
       v.n, WallLoad{},
       SURGE_LAMBDA(int i) {
         WallLoad out;
-        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(i) * max_wall_slots;
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         for (int k = 0; k < max_wall_slots; ++k) {
@@ -327,19 +328,7 @@ void bond(const DemView& v, const Material* mats, Real gap) {
       });
 }
 
-// Semi-implicit Euler for translation and rotation; the orientation quaternion is
-// advanced by dq/dt = 1/2 (0, w) q and renormalised.
-// Cundall local damping: each component of the unbalanced force loses a_d |F_k| against
-// the motion, F_k - a_d |F_k| sign(v_k) (SPEC §3, "useful to settle a pack").
-SURGE_HD inline Vec3 local_damping(const Vec3& f, const Vec3& v, Real ad) {
-  Vec3 out = f;
-  for (int k = 0; k < 3; ++k) {
-    const Real mag = f[k] < 0 ? -f[k] : f[k];
-    out[k] -= v[k] > 0 ? ad * mag : (v[k] < 0 ? -ad * mag : Real(0));
-  }
-  return out;
-}
-
+// Each sphere's motion over the step (integration.hpp); fixed spheres stay and stop.
 void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
@@ -349,27 +338,14 @@ void integrate(const DemView& v, Vec3 gravity, Real ad, Real dt) {
           return;
         }
         const std::uint32_t id = v.id[i];
-        Vec3 f = v.force[i] + v.ext_force[id] + gravity * v.mass[i];
-        Vec3 m = v.torque[i] + v.ext_torque[id];
-        if (ad > 0) { // the same for every sphere: no per-sphere branches on the signs of v (dynamic runs)
-          f = local_damping(f, v.vel[i], ad);
-          m = local_damping(m, v.omega[i], ad);
-        }
-        v.vel[i] += f * (dt / v.mass[i]);
-        v.pos[i] += v.vel[i] * dt;
-        const Vec3 w = (v.omega[i] += m * (dt / v.inertia[i]));
         Real* q = v.quat + 4 * static_cast<std::size_t>(i);
-        const Real h = dt / 2;
-        const Real q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
-        Real n0 = q0 + h * (-w.x * q1 - w.y * q2 - w.z * q3);
-        Real n1 = q1 + h * (w.x * q0 + w.y * q3 - w.z * q2);
-        Real n2 = q2 + h * (-w.x * q3 + w.y * q0 + w.z * q1);
-        Real n3 = q3 + h * (w.x * q2 - w.y * q1 + w.z * q0);
-        const Real il = 1 / std::sqrt(n0 * n0 + n1 * n1 + n2 * n2 + n3 * n3);
-        q[0] = n0 * il;
-        q[1] = n1 * il;
-        q[2] = n2 * il;
-        q[3] = n3 * il;
+        MotionT<Real> s{v.pos[i], v.vel[i], v.omega[i], {q[0], q[1], q[2], q[3]}};
+        advance(s, v.force[i] + v.ext_force[id] + gravity * v.mass[i], v.torque[i] + v.ext_torque[id], v.mass[i],
+                v.inertia[i], ad, dt);
+        v.pos[i] = s.pos;
+        v.vel[i] = s.vel;
+        v.omega[i] = s.omega;
+        for (int k = 0; k < 4; ++k) q[k] = s.q[k];
       });
 }
 
@@ -406,12 +382,14 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
 bool DemSolver::set_pair_pass(const char* isa) {
   if (std::strcmp(isa, "off") == 0) {
     batched_ = nullptr;
+    batched_motion_ = nullptr;
     pair_pass_name_ = "off";
     return true;
   }
 #if defined(SURGE_SIMD)
   if (const PairPassFn f = batched_pair_pass(law_index_, isa)) {
     batched_ = f;
+    batched_motion_ = batched_integrate(isa);
     pair_pass_name_ = std::strcmp(isa, "avx2") == 0 ? "avx2" : "sse2";
     return true;
   }
@@ -545,6 +523,11 @@ void DemSolver::sort_spheres() {
 }
 
 void DemSolver::rebuild_list() {
+  // Memory: a step holds one list's histories and the pairs' forces, a rebuild the last
+  // list's histories and the new one's. The forces (written anew every step) are released
+  // before a rebuild and the last histories after it: the peak is the larger of the two
+  // sets, not their sum (about 130 B per sphere less on a packing).
+  pair_ = par::Buffer<PairForce>{};
   sort_spheres();
   // The last list's pairs become the old ones; the new list counts its pairs per A
   // sphere, numbers them (a scan), carries the histories over and links the B sides.
@@ -560,7 +543,6 @@ void DemSolver::rebuild_list() {
   par::copy(pair_count_, tmpu_);
   n_pairs_ = algo::exclusive_scan(pair_count_.data(), pair_begin_.data(), n_);
   hist_.resize(n_pairs_);
-  pair_.resize(n_pairs_);
   law_.resize(n_pairs_);
   pair_b_.resize(n_pairs_);
   v = view();
@@ -568,6 +550,8 @@ void DemSolver::rebuild_list() {
   neighbour::link_pairs<max_contacts>(v.list, v.id, n_);
   neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
   with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
+  hist_old_ = par::Buffer<ContactSlot>{};
+  pair_.resize(n_pairs_);
   par::copy(pos_built_, pos_);
   list_valid_ = true;
 }
@@ -609,15 +593,44 @@ void DemSolver::step(Real dt) {
   }
   {
     const auto t = par::timed(par::Phase::DemIntegrate);
+#if defined(SURGE_SIMD)
+    if (batched_motion_) {
+      const int blocks = (n_ + pair_pass_block - 1) / pair_pass_block;
+      const IntegrateFn f = batched_motion_;
+      const int n = n_;
+      const Vec3 g = gravity_;
+      const Real ad = local_damping_;
+      par::parallel_for(
+          blocks, [=](int b) { f(v, g, ad, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); });
+    } else {
+      detail::integrate(v, gravity_, local_damping_, dt);
+    }
+#else
     detail::integrate(v, gravity_, local_damping_, dt);
+#endif
   }
 }
 
 namespace {
 // Appends / reads one buffer: element count, then raw elements.
+// Wall-history rows from id order (the solver's) to sorted order (the saved state's:
+// the order of the other per-sphere fields), or back.
+std::vector<ContactSlot> reorder_wall_rows(const std::vector<ContactSlot>& rows, const std::vector<std::uint32_t>& id,
+                                           bool to_sorted) {
+  std::vector<ContactSlot> out(rows.size());
+  for (std::size_t i = 0; i < id.size(); ++i)
+    for (std::size_t k = 0; k < max_wall_slots; ++k) {
+      const std::size_t sorted = i * max_wall_slots + k, by_id = static_cast<std::size_t>(id[i]) * max_wall_slots + k;
+      if (to_sorted)
+        out[sorted] = rows[by_id];
+      else
+        out[by_id] = rows[sorted];
+    }
+  return out;
+}
+
 template <class T>
-void save_buffer(std::string& out, const par::Buffer<T>& b) {
-  const auto v = par::download(b);
+void save_vector(std::string& out, const std::vector<T>& v) {
   const std::uint64_t n = v.size();
   out.append(reinterpret_cast<const char*>(&n), sizeof n);
   out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
@@ -656,13 +669,13 @@ void DemSolver::for_each_sphere_field(Self& s, View& v, F&& f) {
   f(s.fixed_, v.fixed, 1, sorted);
   f(s.id_, v.id, 1, sorted);
   f(s.broken_, v.broken, 1, sorted);
-  f(s.ncontact_, v.ncontact, 1, 0U);     // this step's, recomputed
-  f(s.force_, v.force, 1, 0U);           // this step's, recomputed
-  f(s.torque_, v.torque, 1, 0U);         // this step's, recomputed
-  f(s.ext_force_, v.ext_force, 1, 0U);   // by id
-  f(s.ext_torque_, v.ext_torque, 1, 0U); // by id
-  f(s.wall_hist_, v.wall_hist, max_wall_slots, sorted);
-  f(s.nbr_, v.list.nbr, max_contacts, 0U); // the list: rebuilt after a sort
+  f(s.ncontact_, v.ncontact, 1, 0U);                // this step's, recomputed
+  f(s.force_, v.force, 1, 0U);                      // this step's, recomputed
+  f(s.torque_, v.torque, 1, 0U);                    // this step's, recomputed
+  f(s.ext_force_, v.ext_force, 1, 0U);              // by id
+  f(s.ext_torque_, v.ext_torque, 1, 0U);            // by id
+  f(s.wall_hist_, v.wall_hist, max_wall_slots, 0U); // by id (never sorted: no scratch of 176 B per sphere)
+  f(s.nbr_, v.list.nbr, max_contacts, 0U);          // the list: rebuilt after a sort
   f(s.nnbr_, v.list.nnbr, 1, 0U);
   f(s.entry_, v.list.entry, max_contacts, 0U);
   f(s.pair_begin_, v.list.pair_begin, 1, sorted); // each sphere keeps its pairs' range
@@ -678,8 +691,16 @@ std::string DemSolver::save() const {
   const std::uint64_t valid = list_valid_ ? 1 : 0;
   out.append(reinterpret_cast<const char*>(&valid), sizeof valid);
   DemView unused{};
-  for_each_sphere_field(*this, unused, [&](const auto& b, auto&, int, unsigned) { save_buffer(out, b); });
-  save_buffer(out, hist_); // the pairs' histories
+  for_each_sphere_field(*this, unused, [&](const auto& b, auto&, int, unsigned) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(b)>, par::Buffer<ContactSlot>>) {
+      if (&b == &wall_hist_) { // rows by id, saved in sorted order (the format as it was)
+        save_vector(out, reorder_wall_rows(par::download(wall_hist_), par::download(id_), true));
+        return;
+      }
+    }
+    save_vector(out, par::download(b));
+  });
+  save_vector(out, par::download(hist_)); // the pairs' histories
   return out;
 }
 
@@ -712,6 +733,8 @@ void DemSolver::restore(const std::string& bytes) {
   const DemView v = view();
   neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
   list_valid_ = valid == 1;
+  // The wall histories, saved in sorted order, back to rows by id.
+  par::upload(wall_hist_, reorder_wall_rows(par::download(wall_hist_), par::download(id_), false));
 }
 
 void DemSolver::rigid_states(par::Buffer<RigidState>& out) {

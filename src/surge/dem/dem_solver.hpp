@@ -138,9 +138,11 @@ struct DemView {
   Vec3* pos_built;                    // positions when the list was built
 };
 
-// A CPU pair pass for spheres [begin, end): evaluates their pairs (their A side) and
-// writes each pair's history and forces, as detail::pair_pass does (dem_pairs_simd.hpp).
+// The CPU's batched passes (dem_simd.hpp), for spheres [begin, end): the pair pass
+// evaluates their pairs (their A side) and writes each pair's history and forces, as
+// detail::pair_pass does; the integration advances them, as detail::integrate does.
 using PairPassFn = void (*)(const DemView& v, Real dt, int begin, int end);
+using IntegrateFn = void (*)(const DemView& v, Vec3 gravity, Real ad, Real dt, int begin, int end);
 // The spheres the solver hands to one call.
 constexpr int pair_pass_block = 64;
 
@@ -188,9 +190,10 @@ public:
   [[nodiscard]] std::vector<std::uint32_t> contact_counts() const; // by id
   [[nodiscard]] std::vector<std::uint32_t> intact_bonds() const;   // id pairs (lower id first), flattened
   [[nodiscard]] int size() const { return n_; }
-  // The pair pass: "avx2" or "sse2" (the batched copies, in builds with SURGE_SIMD on a CPU
-  // that has the set) or "off" (the scalar pass, the one CUDA runs); false, and nothing
-  // changed, where the copy is not there. By default the widest, or SURGE_SIMD's choice.
+  // The pair pass and integration: "avx2" or "sse2" (the batched copies, in builds with
+  // SURGE_SIMD on a CPU that has the set) or "off" (the scalar passes, the ones CUDA runs);
+  // false, and nothing changed, where the copy is not there. By default the widest, or
+  // SURGE_SIMD's choice.
   bool set_pair_pass(const char* isa);
   [[nodiscard]] const char* pair_pass() const { return pair_pass_name_; }
   // True when every sphere position is finite (a reduction; nothing is copied to the host).
@@ -214,7 +217,7 @@ private:
     else if constexpr (std::is_same_v<T, std::uint32_t>)
       return tmpu_;
     else
-      return hist_old_; // free while sorting: the rebuild that follows swaps the last list's pairs into it
+      return hist_old_; // (no ContactSlot field is sorted: the wall histories are by id)
   }
   void sort_spheres();
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
@@ -244,8 +247,9 @@ private:
   void build_triangle_grid();
   Vec3 gravity_{};
   Real local_damping_ = 0;
-  int law_index_ = 0;            // the contact law, an index into ContactLaws
-  PairPassFn batched_ = nullptr; // the CPU's batched pair pass (null: the scalar one)
+  int law_index_ = 0;                    // the contact law, an index into ContactLaws
+  PairPassFn batched_ = nullptr;         // the CPU's batched pair pass (null: the scalar one)
+  IntegrateFn batched_motion_ = nullptr; // and integration
   const char* pair_pass_name_ = "off";
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};

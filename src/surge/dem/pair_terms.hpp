@@ -1,7 +1,7 @@
 // The terms of one DEM contact (SPEC §3) under contact law L, shared by every law:
 // normal force, bond breakage, the shear spring with its Coulomb limit, rolling and
 // twisting resistance. The solver's pair and wall passes (dem_solver.cpp) and the CPU's
-// batched pair pass (dem_pairs_batched.inc) call the same templates.
+// batched pair pass (dem_batched.inc) call the same templates.
 #pragma once
 #include "surge/core/lanes.hpp"
 #include "surge/dem/dem_solver.hpp"
@@ -11,7 +11,7 @@ namespace surge::dem::detail {
 // The pair terms of one contact, for the canonical side A (lower id, or the sphere
 // against a plane). Everything both sides need comes from here, computed once per side
 // with identical inputs, so the two sides agree exactly. Written once for one contact
-// (T = Real) and for a batch of them (T = a vector of Reals: dem_pairs_batched.inc), with
+// (T = Real) and for a batch of them (T = a vector of Reals: dem_batched.inc), with
 // the same bits in every lane (core/lanes.hpp).
 template <class T>
 struct PairInputT {

@@ -1,5 +1,6 @@
-#include "surge/dem/dem_pairs_simd.hpp"
+#include "surge/dem/dem_simd.hpp"
 
+#include "surge/dem/integration.hpp"
 #include "surge/dem/pair_terms.hpp"
 #include "surge/par/simd_isa.hpp"
 
@@ -20,7 +21,7 @@ namespace surge::dem {
 #endif
 namespace avx2 {
 #define SURGE_BATCH_AVX2 1
-#include "surge/dem/dem_pairs_batched.inc"
+#include "surge/dem/dem_batched.inc"
 #undef SURGE_BATCH_AVX2
 } // namespace avx2
 #if defined(__clang__)
@@ -30,12 +31,17 @@ namespace avx2 {
 #endif
 
 namespace sse2 {
-#include "surge/dem/dem_pairs_batched.inc"
+#include "surge/dem/dem_batched.inc"
 } // namespace sse2
 
 PairPassFn batched_pair_pass(int law, const char* isa) {
   if (!par::simd_isa_here(isa)) return nullptr;
   return std::strcmp(isa, "avx2") == 0 ? avx2::pass_of(law, ContactLaws{}) : sse2::pass_of(law, ContactLaws{});
+}
+
+IntegrateFn batched_integrate(const char* isa) {
+  if (!par::simd_isa_here(isa)) return nullptr;
+  return std::strcmp(isa, "avx2") == 0 ? &avx2::integrate_range : &sse2::integrate_range;
 }
 
 } // namespace surge::dem
