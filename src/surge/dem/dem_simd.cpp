@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <immintrin.h>
 
 // Each instruction set's copy lives in its own namespace, compiled under its own target
 // options, with everything it calls inlined into it (SURGE_INLINE), as in
