@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <random>
 #include <string>
@@ -86,13 +88,19 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
+bool same_bits(const Vec3& a, const Vec3& b) {
+  for (int k = 0; k < 3; ++k)
+    if (std::bit_cast<std::uint32_t>(a[k]) != std::bit_cast<std::uint32_t>(b[k])) return false;
+  return true;
+}
+
 void expect_same(const Outcome& a, const Outcome& b) {
   ASSERT_EQ(a.spheres.size(), b.spheres.size());
   for (std::size_t i = 0; i < a.spheres.size(); ++i) {
     const Sphere &x = a.spheres[i], &y = b.spheres[i];
-    ASSERT_EQ(std::memcmp(&x.pos, &y.pos, sizeof x.pos), 0) << "sphere " << i;
-    ASSERT_EQ(std::memcmp(&x.vel, &y.vel, sizeof x.vel), 0) << "sphere " << i;
-    ASSERT_EQ(std::memcmp(&x.omega, &y.omega, sizeof x.omega), 0) << "sphere " << i;
+    ASSERT_TRUE(same_bits(x.pos, y.pos)) << "sphere " << i;
+    ASSERT_TRUE(same_bits(x.vel, y.vel)) << "sphere " << i;
+    ASSERT_TRUE(same_bits(x.omega, y.omega)) << "sphere " << i;
   }
   EXPECT_TRUE(same_bytes(a.forces, b.forces));
   EXPECT_TRUE(same_bytes(a.torques, b.torques));
