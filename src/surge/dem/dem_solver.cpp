@@ -95,17 +95,8 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* ma
 // history of the pair and its stored law, the rest from the two spheres and materials.
 template <class L>
 SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint32_t p, Real dist, Real dt) {
-  PairInput in;
-  const Vec3 dab = v.pos[a] - v.pos[b];
-  in.n = dab * (1 / dist);
-  in.un = v.radius[a] + v.radius[b] - dist;
-  in.ra = v.radius[a];
-  in.rb = v.radius[b];
-  in.va = v.vel[a];
-  in.wa = v.omega[a];
-  in.vb = v.vel[b];
-  in.wb = v.omega[b];
-  set_mixed(v.mixed[v.material[a] * v.n_materials + v.material[b]], in.ra, in.rb, in);
+  const PairInput in = sphere_pair_input(v.pos[a] - v.pos[b], dist, v.radius[a], v.radius[b], v.vel[a], v.omega[a],
+                                         v.vel[b], v.omega[b], v.mixed[v.material[a] * v.n_materials + v.material[b]]);
   return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), springs_of(v.hist[p]), dt);
 }
 
@@ -145,9 +136,8 @@ void pair_pass(const DemView& v, Real dt) {
         // The pairs i is A of (the partner evaluates the others).
         neighbour::for_each_own_pair<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int j, std::uint32_t p) {
           const Real dist = norm(xi - v.pos[j]);
-          const bool held = v.hist[p].bonded != 0; // a bond acts across a gap too
           const std::uint32_t partner = v.hist[p].partner;
-          if ((!(dist < ri + v.radius[j]) && !held) || dist <= 0) {
+          if (!in_contact(dist, ri + v.radius[j], v.hist[p].bonded != 0)) {
             // Not touching: the contact's history ends (the pair stays listed).
             v.hist[p] = ContactSlot{};
             v.hist[p].partner = partner;
@@ -562,6 +552,25 @@ bool DemSolver::list_stale() {
   return detail::max_displacement2(view()) > half * half;
 }
 
+namespace {
+// Runs the CPU's batched pass f(args..., begin, end) over blocks of pair_pass_block
+// spheres, handed 4 at a time to a thread (the default chunk of 256 indices gave one of
+// two threads most of the blocks); false where there is none (the scalar pass runs).
+template <class Fn, class... A>
+bool run_batched(Fn f, int n, const A&... args) {
+#if defined(SURGE_SIMD)
+  if (!f) return false;
+  const int blocks = (n + pair_pass_block - 1) / pair_pass_block;
+  par::parallel_for_uneven(
+      blocks, [=](int b) { f(args..., b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); }, 4);
+  return true;
+#else
+  (void)f, (void)n, ((void)args, ...);
+  return false;
+#endif
+}
+} // namespace
+
 void DemSolver::step(Real dt) {
   if (n_triangles_ > 0 && tri_grid_radius_ < max_radius_) build_triangle_grid();
   {
@@ -573,41 +582,15 @@ void DemSolver::step(Real dt) {
     const auto t = par::timed(par::Phase::DemContacts);
     with_contact_law(law_index_, [&](auto law) {
       using L = decltype(law);
-#if defined(SURGE_SIMD)
-      if (batched_) {
-        const int blocks = (n_ + pair_pass_block - 1) / pair_pass_block;
-        const PairPassFn f = batched_;
-        const int n = n_;
-        par::parallel_for_uneven(
-            blocks, [=](int b) { f(v, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); },
-            4); // 256 spheres at a time
-      } else {
-        detail::pair_pass<L>(v, dt);
-      }
-#else
-      detail::pair_pass<L>(v, dt);
-#endif
+      if (!run_batched(batched_, n_, v, dt)) detail::pair_pass<L>(v, dt);
       detail::sphere_pass<L>(
           v, detail::WallsView{materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_}, dt);
     });
   }
   {
     const auto t = par::timed(par::Phase::DemIntegrate);
-#if defined(SURGE_SIMD)
-    if (batched_motion_) {
-      const int blocks = (n_ + pair_pass_block - 1) / pair_pass_block;
-      const IntegrateFn f = batched_motion_;
-      const int n = n_;
-      const Vec3 g = gravity_;
-      const Real ad = local_damping_;
-      par::parallel_for(
-          blocks, [=](int b) { f(v, g, ad, dt, b * pair_pass_block, b + 1 < blocks ? (b + 1) * pair_pass_block : n); });
-    } else {
+    if (!run_batched(batched_motion_, n_, v, gravity_, local_damping_, dt))
       detail::integrate(v, gravity_, local_damping_, dt);
-    }
-#else
-    detail::integrate(v, gravity_, local_damping_, dt);
-#endif
   }
 }
 
@@ -729,9 +712,9 @@ void DemSolver::restore(const std::string& bytes) {
   law_.resize(pairs);
   pair_b_.resize(pairs);
   if (pos != bytes.size()) throw std::invalid_argument("DEM state has trailing data");
-  with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(view(), materials_.data()); });
   const DemView v = view();
   neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
+  with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
   list_valid_ = valid == 1;
   // The wall histories, saved in sorted order, back to rows by id.
   par::upload(wall_hist_, reorder_wall_rows(par::download(wall_hist_), par::download(id_), false));

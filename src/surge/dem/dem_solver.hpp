@@ -110,11 +110,14 @@ struct SumWallLoads {
 
 // What two materials' contacts share, whatever the radii (friction, rolling and twisting
 // resistance, bond strengths; SPEC 3): a table of n x n, mixed once.
-struct MixedPair {
-  Real tan_phi;
-  Real k_roll, k_roll_max, k_twist, k_twist_max;
-  Real bond_cn, bond_cs; // 0 unless both materials bond
+// (T: one value, or a batch in the CPU's batched pair pass.)
+template <class T>
+struct MixedPairT {
+  T tan_phi;
+  T k_roll, k_roll_max, k_twist, k_twist_max;
+  T bond_cn, bond_cs; // 0 unless both materials bond
 };
+using MixedPair = MixedPairT<Real>;
 
 struct DemView {
   int n = 0;

@@ -145,15 +145,42 @@ SURGE_HD inline MixedPair mix(const Material& ma, const Material& mb) {
   m.bond_cs = bondable ? (ma.bond_cs < mb.bond_cs ? ma.bond_cs : mb.bond_cs) : 0;
   return m;
 }
-SURGE_HD inline void set_mixed(const MixedPair& m, Real ra, Real rb, PairInput& in) {
+template <class T>
+SURGE_HD SURGE_INLINE void set_mixed(const MixedPairT<T>& m, T ra, T rb, PairInputT<T>& in) {
   in.tan_phi = m.tan_phi;
   in.k_roll = m.k_roll;
   in.k_roll_max = m.k_roll_max;
   in.k_twist = m.k_twist;
   in.k_twist_max = m.k_twist_max;
-  in.rmin = ra < rb ? ra : rb;
+  in.rmin = pick(ra < rb, ra, rb);
   in.bond_cn = m.bond_cn;
   in.bond_cs = m.bond_cs;
+}
+
+// The input of sphere pair (A, B): dab = x_A - x_B and its length, the radii, the
+// velocities and the two materials' mixed properties.
+template <class T>
+SURGE_HD SURGE_INLINE PairInputT<T> sphere_pair_input(const Vec3T<T>& dab, T dist, T ra, T rb, const Vec3T<T>& va,
+                                                      const Vec3T<T>& wa, const Vec3T<T>& vb, const Vec3T<T>& wb,
+                                                      const MixedPairT<T>& m) {
+  PairInputT<T> in;
+  in.n = dab * (1 / dist);
+  in.un = ra + rb - dist;
+  in.ra = ra;
+  in.rb = rb;
+  in.va = va;
+  in.wa = wa;
+  in.vb = vb;
+  in.wb = wb;
+  set_mixed(m, ra, rb, in);
+  return in;
+}
+
+// Whether a listed pair is in contact: closer than r_A + r_B (reach), or bonded (a bond
+// acts across a gap too), and apart (dist > 0). Without short circuits: the batched pass
+// sorts pairs by it without a branch.
+[[nodiscard]] SURGE_HD inline bool in_contact(Real dist, Real reach, bool held) {
+  return (static_cast<int>(dist < reach) | static_cast<int>(held)) & static_cast<int>(!(dist <= 0));
 }
 
 } // namespace surge::dem::detail
