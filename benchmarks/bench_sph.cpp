@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <sys/resource.h>
+#include <utility>
 
 int main(int argc, char** argv) {
   if (argc < 4) {
@@ -29,10 +30,10 @@ int main(int argc, char** argv) {
   std::size_t n_fluid = 0, n_all = 0;
   std::unique_ptr<surge::sph::WcsphSolver> solver;
   {
-    const auto init = surge::sph::build_initial_state(c);
+    auto init = surge::sph::build_initial_state(c);
     n_fluid = init.n_fluid;
     n_all = init.particles.size();
-    solver = std::make_unique<surge::sph::WcsphSolver>(surge::sph::solver_config(c), init);
+    solver = std::make_unique<surge::sph::WcsphSolver>(surge::sph::solver_config(c), std::move(init));
   }
   solver->step(1.0); // warm-up: first sort of an unsorted set, page faults
   const auto t0 = std::chrono::steady_clock::now();

@@ -71,11 +71,11 @@ TEST(Mdbc, LinearDensityFieldIsExtrapolatedExactly) {
   ASSERT_EQ(store.sort(grid), 0);
   const auto v = store.view();
   const Vec3 xb{0.06f, 0.06f, -1.5f * dp}, xg{0.06f, 0.06f, 1.5f * dp};
-  const Real got = density_at(prm, grid.view(v.pos), v, xb, xg);
+  const Real got = density_at(prm, grid.view(v.pos, v.kind), v, xb, xg);
   const Real want = a + dot(b, xb);
   EXPECT_NEAR(got, want, 1e-5 * want) << "got " << got << ", want " << want;
   // A ghost with no fluid around keeps the current value (-1 here).
-  EXPECT_EQ(density_at(prm, grid.view(v.pos), v, Vec3{0.06f, 0.06f, 0.5f}, Vec3{0.06f, 0.06f, 0.5f}), Real(-1));
+  EXPECT_EQ(density_at(prm, grid.view(v.pos, v.kind), v, Vec3{0.06f, 0.06f, 0.5f}, Vec3{0.06f, 0.06f, 0.5f}), Real(-1));
 }
 
 // Still water 0.2 m deep in a 0.1 x 0.1 m tank at dp = 0.01: the pressure 2 cm above the

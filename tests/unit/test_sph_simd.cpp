@@ -54,7 +54,7 @@ bool same_bits(const sph::Rates& a, const sph::Rates& b) {
 // The rates a batched copy stores for every particle (the blocks the solver hands it).
 std::vector<sph::Rates> batched_all(sph::RatesFn f, const sph::WcsphSolver& s, const neighbour::GridView& g,
                                     const particles::ParticleView& p) {
-  std::vector<sph::WallPlane> faces(static_cast<std::size_t>(p.n));
+  std::vector<sph::WallChoice> faces(static_cast<std::size_t>(p.n));
   for (int b = 0; b < p.n; b += sph::rates_block)
     f(s.params(), g, p, s.hold_view(), faces.data(), b, std::min(p.n, b + sph::rates_block));
   std::vector<sph::Rates> out(static_cast<std::size_t>(p.n));

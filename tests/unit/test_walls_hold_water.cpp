@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -71,7 +72,7 @@ bool held(const sph::InitialState& init, const std::vector<std::size_t>& near, c
     const sph::WallReach reach = init.wall_reach[b];
     bool by_face = false;
     sph::for_each_held_face(xb, r, reach, init.boundary_ghost[b], init.extra_faces.data(),
-                            [&](const sph::WallPlane& w) { by_face = by_face || w.distance(x) < keep_off; });
+                            [&](const sph::WallPlane& w, int) { by_face = by_face || w.distance(x) < keep_off; });
     if (by_face) return true;
     if (norm(r) < reach.sphere) return true;
   }
@@ -334,6 +335,64 @@ ImpactResult impact(const std::string& boundary, const std::string& integrator, 
 }
 
 } // namespace
+
+// The rates pass stores which plane holds each fluid particle (4 B: wall particle and face
+// or sphere) and the update rebuilds it (held_plane): it must be, bit for bit, the plane the
+// rates pass offered under that choice. Water thrown at a solid box on a tank's floor
+// (faces, extra faces at the box's edges, spheres), after 60 steps, both wall models.
+TEST(NoPenetration, TheUpdateRebuildsThePlaneTheRatesPassChose) {
+  for (const std::string boundary : {"dynamic", "mdbc"}) {
+    const Case c =
+        io::read_case_text("name: rebuild\ndp: 0.02\nsph: {boundary: " + boundary +
+                               "}\ndomain: {min: [0,0,0], max: [0.6,0.4,0.4]}\n"
+                               "fluid: [{box: {min: [0.2,0.04,0.02], max: [0.38,0.36,0.2]}, velocity: [2,0,0]}]\n"
+                               "walls: [{name: tank, box: {min: [0,0,0], max: [0.6,0.4,0.4]}, open: [zmax]},\n"
+                               "        {name: box, box: {min: [0.4,0.1,0], max: [0.5,0.3,0.12]}, solid: true}]\n",
+                           "rebuild.yaml");
+    sph::WcsphSolver s(sph::solver_config(c), sph::build_initial_state(c));
+    for (int k = 0; k < 60; ++k) s.step(1.0);
+    s.refresh();
+    const par::devcheck::Open access; // read on the host (a CPU-only check of the formulas)
+    const auto p = s.view();
+    const auto g = s.grid_view();
+    const auto gh = s.hold_view();
+    ASSERT_TRUE(gh.hold);
+    const auto& prm = s.params();
+    const Real keep_off = sph::keep_off_distance(prm.dp);
+    int chosen = 0, by_face = 0, by_extra_face = 0, by_sphere = 0;
+    for (int i = 0; i < p.n; ++i) {
+      if (p.kind[i] != static_cast<std::uint8_t>(Kind::Fluid)) continue;
+      const sph::WallChoice choice = sph::wcsph_rates(prm, g, p, i, gh).wall;
+      if (choice == sph::no_wall) continue;
+      ++chosen;
+      // The plane offered under that choice, found again among the wall neighbours.
+      const int j = static_cast<int>(choice >> 3), what = static_cast<int>(choice & 7);
+      const Vec3 rij = p.pos[i] - p.pos[j];
+      const std::uint32_t b = p.id[j] - gh.first_id;
+      sph::WallPlane offered;
+      bool found = false;
+      if (what == sph::sphere_of_wall) {
+        offered = sph::sphere_plane(p.pos[j], rij, std::sqrt(dot(rij, rij)), gh.reach[b].sphere, keep_off);
+        found = true;
+        ++by_sphere;
+      } else {
+        sph::for_each_held_face(p.pos[j], rij, gh.reach[b], gh.offset[b], gh.extra_face,
+                                [&](const sph::WallPlane& w, int k) {
+                                  if (k == what) offered = w, found = true;
+                                });
+        ++(what == sph::own_face ? by_face : by_extra_face);
+      }
+      ASSERT_TRUE(found) << boundary << ": particle " << i;
+      const sph::WallPlane rebuilt = sph::held_plane(gh, p, choice, p.pos[i], keep_off);
+      EXPECT_EQ(std::memcmp(&rebuilt, &offered, sizeof offered), 0) << boundary << ": particle " << i;
+    }
+    // Not vacuous: water against the walls chose faces, the box's edges' extra faces and
+    // spheres (about 45, 27 and 208 of each model's 280 choices).
+    EXPECT_GT(by_face, 10) << boundary;
+    EXPECT_GT(by_extra_face, 5) << boundary;
+    EXPECT_GT(by_sphere, 10) << boundary;
+  }
+}
 
 TEST(WallsHoldWater, ImpactAt3msWithMdbcLosesNoWaterThroughTheWalls) {
   for (const char* integrator : {"verlet", "symplectic"}) {

@@ -30,17 +30,31 @@ GridSpec make_grid(const Vec3& lo, const Vec3& hi, Real radius, int span = 1);
 
 // What a kernel needs to walk neighbours: the grid, the sorted positions and
 // cell_start. Particles are sorted by (cell, class): within each cell the class-0
-// particles (fluid) come first, then class-1 (boundary). cell_start has
-// 2 cells() + 1 entries: cell c holds [start[2c], start[2c+2]), its fluid part
-// [start[2c], start[2c+1]).
+// particles (fluid) come first, then class-1 (boundary). cell_start has cells() + 1
+// entries: cell c holds [start[c], start[c + 1]), its fluid part up to the first particle
+// whose kind is not Fluid (4 B per cell, not 8 for a start per class).
 struct GridView {
   GridSpec spec;
   const std::uint32_t* cell_start = nullptr;
   const Vec3* pos = nullptr;
-  // wet[c] != 0 iff the stencil around cell c holds a class-0 (fluid) particle (null: not
-  // known). Boundary particles far from water skip their scan (UniformGrid::mark_wet).
-  const std::uint8_t* wet = nullptr;
+  // The sorted particles' kinds, for for_each_fluid_neighbour (null: every particle fluid).
+  const std::uint8_t* kind = nullptr;
+  // A bit per cell, set iff the stencil around the cell holds a class-0 (fluid) particle
+  // (null: not known); each row of cells along x starts a new 32-bit word (wet_row_words).
+  // Boundary particles far from water skip their scan (UniformGrid::mark_wet).
+  const std::uint32_t* wet = nullptr;
 };
+
+// The 32-bit words of one row of GridView::wet.
+[[nodiscard]] SURGE_HD inline int wet_row_words(const GridSpec& s) { return (s.nx + 31) / 32; }
+
+// Whether the stencil around cell c may hold fluid (GridView::wet; true when not known).
+[[nodiscard]] SURGE_HD inline bool stencil_wet(const GridView& g, std::uint32_t c) {
+  if (!g.wet) return true;
+  const auto nx = static_cast<std::uint32_t>(g.spec.nx);
+  const std::uint32_t x = c % nx, row = c / nx;
+  return ((g.wet[row * static_cast<std::uint32_t>(wet_row_words(g.spec)) + (x >> 5)] >> (x & 31)) & 1U) != 0;
+}
 
 // Calls row(first_cell, last_cell) for the (2 span + 1)^2 rows of up to 2 span + 1 cells
 // (along x) that make up the stencil around x, clipped to the grid.
@@ -74,7 +88,7 @@ SURGE_HD inline void scan_range(const GridView& g, const Vec3& x, Real r2max, st
 // class): contiguous index ranges, in the order of the neighbour loops.
 template <class R>
 SURGE_HD inline void for_each_stencil_range(const GridView& g, const Vec3& x, R&& range) {
-  for_each_stencil_row(g.spec, x, [&](int c0, int c1) { range(g.cell_start[2 * c0], g.cell_start[2 * (c1 + 1)]); });
+  for_each_stencil_row(g.spec, x, [&](int c0, int c1) { range(g.cell_start[c0], g.cell_start[c1 + 1]); });
 }
 
 // Calls f(j, x - pos[j], |x - pos[j]|^2) for every particle j with distance^2 < r2max,
@@ -88,9 +102,17 @@ SURGE_HD inline void for_each_neighbour(const GridView& g, const Vec3& x, Real r
 // particles need, without scanning the other boundary particles around them.
 template <class F>
 SURGE_HD inline void for_each_fluid_neighbour(const GridView& g, const Vec3& x, Real r2max, F&& f) {
-  if (g.wet && !g.wet[g.spec.key(x)]) return; // no fluid in the stencil
+  if (!stencil_wet(g, g.spec.key(x))) return; // no fluid in the stencil
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   for_each_stencil_row(g.spec, x, [&](int c0, int c1) {
-    for (int c = c0; c <= c1; ++c) scan_range(g, x, r2max, g.cell_start[2 * c], g.cell_start[2 * c + 1], f);
+    for (int c = c0; c <= c1; ++c) {
+      std::uint32_t end = g.cell_start[c];
+      if (g.kind)
+        while (end < g.cell_start[c + 1] && g.kind[end] == fluid) ++end;
+      else
+        end = g.cell_start[c + 1];
+      scan_range(g, x, r2max, g.cell_start[c], end, f);
+    }
   });
 }
 
@@ -106,30 +128,40 @@ public:
   // by id rather than kept in their previous order: neighbour sums then visit the same
   // particles in the same order however the particles were stored or distributed
   // (what makes a distributed run equal to one process, bit for bit).
-  void sort(const Vec3* pos, const std::uint8_t* cls, int n, const std::uint32_t* id = nullptr);
+  // `scratch` (bytes): memory the sort may use (algo::sort_by_key).
+  void sort(const Vec3* pos, const std::uint8_t* cls, int n, const std::uint32_t* id = nullptr, void* scratch = nullptr,
+            std::size_t scratch_bytes = 0);
   // Builds cell_start from the sorted keys (no host synchronisation).
   void build_cell_start(int n);
-  // After build_cell_start: marks the cells whose stencil holds a fluid particle (GridView::
-  // wet): the cells holding one, dilated by the span along x, y and z. A few passes over
-  // the cells, 2 bytes per cell; the SPH store calls it, the DEM does not need it.
-  void mark_wet();
+  // The keys, spent once build_cell_start has run: the store's sort borrows them as the
+  // scratch of its 4-byte fields (they come back holding anything; the next sort rebuilds them).
+  [[nodiscard]] par::Buffer<std::uint32_t>& spent_keys() { return keys_; }
+  // After build_cell_start, with the sorted particles' kinds: marks the cells whose stencil
+  // holds a fluid particle (GridView::wet): the cells holding one, dilated by the span
+  // along x (shifts within a row's words), y and z (ORs of whole rows' words). A bit per
+  // cell (span < 32); the SPH store calls it, the DEM does not need it.
+  void mark_wet(const std::uint8_t* kind);
   // The number of live (class < 2) particles after build_cell_start: a 4-byte copy to
   // the host (a synchronisation on the GPU, so the step does not ask for it there).
   [[nodiscard]] int live_count() const;
 
   [[nodiscard]] const std::uint32_t* permutation() const { return perm_.data(); }
-  [[nodiscard]] GridView view(const Vec3* sorted_pos) const {
-    return {spec_, cell_start_.data(), sorted_pos, wet_.size() == spec_.cells() ? wet_.data() : nullptr};
+  [[nodiscard]] GridView view(const Vec3* sorted_pos, const std::uint8_t* sorted_kind = nullptr) const {
+    return {spec_, cell_start_.data(), sorted_pos, sorted_kind, wet_.size() == wet_words() ? wet_.data() : nullptr};
   }
   [[nodiscard]] std::size_t bytes() const {
-    return keys_.bytes() + keys64_.bytes() + perm_.bytes() + cell_start_.bytes() + wet_.bytes() + wet_scratch_.bytes();
+    return keys_.bytes() + keys64_.bytes() + perm_.bytes() + cell_start_.bytes() + wet_.bytes() + wet_tmp_.bytes();
   }
 
 private:
+  [[nodiscard]] std::size_t wet_words() const {
+    return static_cast<std::size_t>(spec_.ny) * static_cast<std::size_t>(spec_.nz) *
+           static_cast<std::size_t>(wet_row_words(spec_));
+  }
   GridSpec spec_;
   par::Buffer<std::uint32_t> keys_, perm_, cell_start_;
-  par::Buffer<std::uint64_t> keys64_; // (key << 32 | id), only for sorts by id
-  par::Buffer<std::uint8_t> wet_, wet_scratch_;
+  par::Buffer<std::uint64_t> keys64_;        // (key << 32 | id), only for sorts by id
+  par::Buffer<std::uint32_t> wet_, wet_tmp_; // a bit per cell, and the dilation's scratch
 };
 
 } // namespace surge::neighbour

@@ -3,17 +3,46 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace surge::particles {
 
 void ParticleStore::upload(const HostParticles& h) {
+  begin_upload(h);
+  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned use, const auto* from) {
+    par::upload(buf, (use & kHistory) && host.size() != h.size() ? *from : host);
+  });
+  finish_upload(h);
+}
+
+void ParticleStore::upload(HostParticles&& h) {
+  begin_upload(h);
+  const std::size_t n = h.size();
+  // Each host field is released once it is in the execution space (a history field's
+  // source with the history field), so that the two copies never coexist whole: the peak
+  // of a solver's construction stays below its running memory.
+  std::vector<const void*> sources;
+  for_each_state_field(h, f_, [&](const char*, auto&, auto&, unsigned, const auto* from) {
+    if (from) sources.push_back(from);
+  });
+  auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  for_each_state_field(h, f_, [&](const char*, auto& host, auto& buf, unsigned use, auto* from) {
+    par::upload(buf, (use & kHistory) && host.size() != n ? *from : host);
+    if (from) release(*from);
+    if (std::find(sources.begin(), sources.end(), &host) == sources.end()) release(host);
+  });
+  finish_upload(h);
+  h = HostParticles{};
+}
+
+void ParticleStore::begin_upload(const HostParticles& h) {
   n_ = static_cast<int>(h.size());
-  const auto n = h.size();
   removed_pending_ =
       static_cast<int>(std::count(h.kind.begin(), h.kind.end(), static_cast<std::uint8_t>(Kind::Removed)));
-  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned use, const auto* from) {
-    par::upload(buf, (use & kHistory) && host.size() != n ? *from : host);
-  });
+}
+
+void ParticleStore::finish_upload(const HostParticles& h) {
+  const auto n = static_cast<std::size_t>(n_);
   if (distributed_) {
     if (h.halo.size() == n)
       par::upload(halo_, h.halo);
@@ -77,18 +106,26 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   // Sort class: fluid first in each cell, then boundary particles; removed ones last.
   par::parallel_for(
       n_, SURGE_LAMBDA(int i) { dead[i] = kind[i] == removed ? 2 : (kind[i] == fluid ? 0 : 1); });
-  grid.sort(f_.pos.data(), dead, n_, distributed_ ? f_.id.data() : nullptr);
+  // acc, recomputed after every sort, is the sort's scratch (12 B per particle: 64-bit keys
+  // and values when sorting by id).
+  grid.sort(f_.pos.data(), dead, n_, distributed_ ? f_.id.data() : nullptr, acc_.data(), acc_.bytes());
+  grid.build_cell_start(n_);
   const std::uint32_t* perm = grid.permutation();
   // acc, drho, press and vsig are recomputed after every sort, and pos_prev is scratch
   // within one symplectic step: none of them is carried through the sort, so acc and
-  // drho serve as the gather scratch (no extra 16 B per particle), and cls, spent once
-  // the keys are built, as the scratch of kind.
+  // drho serve as the gather scratch (no extra 16 B per particle), cls, spent once the
+  // keys are built, as the scratch of kind, and the keys, spent once cell_start is
+  // built, as the scratch of id.
+  par::Buffer<std::uint32_t>& spent_keys = grid.spent_keys();
   for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned use, const auto*) {
-    if (use & kSorted) reorder(buf, scratch(buf), perm);
+    if (!(use & kSorted)) return;
+    if constexpr (std::is_same_v<std::decay_t<decltype(buf)>, par::Buffer<std::uint32_t>>)
+      reorder(buf, spent_keys, perm);
+    else
+      reorder(buf, scratch(buf), perm);
   });
   if (distributed_) reorder(halo_, cls_, perm);
-  grid.build_cell_start(n_);
-  grid.mark_wet();
+  grid.mark_wet(f_.kind.data());
   // The host knows how many were flagged, so the GPU need not report the live count.
   // The CPU builds, where the check costs nothing, verify it on every sort.
   const int live = n_ - removed_pending_;

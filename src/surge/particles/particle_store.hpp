@@ -36,6 +36,8 @@ public:
   // Replaces the contents with host data; without vel_prev / rho_prev the
   // current values also become v^{n-1} and rho^{n-1}.
   void upload(const HostParticles& h);
+  // The same, releasing h's memory field by field as it goes (h ends empty).
+  void upload(HostParticles&& h);
   // A distributed store carries the halo flag of every particle and sorts each cell by
   // particle id (UniformGrid::sort), so that its sums do not depend on the distribution.
   void set_distributed(bool on) { distributed_ = on; }
@@ -75,6 +77,8 @@ public:
   [[nodiscard]] std::size_t bytes() const;
 
 private:
+  void begin_upload(const HostParticles& h);
+  void finish_upload(const HostParticles& h);
   // The state fields (particle_fields.hpp), one buffer each, named as in HostParticles.
   struct Fields {
     par::Buffer<Vec3> pos, vel, vel_prev;
@@ -88,7 +92,6 @@ private:
   par::Buffer<Vec3>& scratch(par::Buffer<Vec3>& /*field*/) { return acc_; }
   par::Buffer<Real>& scratch(par::Buffer<Real>& /*field*/) { return drho_; }
   par::Buffer<std::uint8_t>& scratch(par::Buffer<std::uint8_t>& /*field*/) { return cls_; }
-  par::Buffer<std::uint32_t>& scratch(par::Buffer<std::uint32_t>& /*field*/) { return tmpu_; }
   int n_ = 0;
   int removed_pending_ = 0; // marked Removed since the last sort
   Fields f_;
@@ -96,7 +99,7 @@ private:
   par::Buffer<Real> drho_, vsig_;
   bool distributed_ = false;
   par::Buffer<std::uint8_t> cls_, halo_;
-  par::Buffer<std::uint32_t> tmpu_;
+  par::Buffer<std::uint32_t> tmpu_;    // the exchange's scratch (distributed runs only)
   par::Buffer<std::uint32_t> idx_;     // the exchange's selection
   par::Buffer<unsigned char> extract_; // its gathered fields, one at a time
 };

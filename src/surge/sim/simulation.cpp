@@ -300,6 +300,8 @@ public:
       dist_.start(init_.particles);
       if (cp_) cp_->coupling->reduce_forces(solver_, *cp_->dem); // the fluid force at t = 0, for the gauges
     }
+    // The initial particles' host copy (37 B per particle or more) is not read again.
+    init_.particles = {};
   }
 
   double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {

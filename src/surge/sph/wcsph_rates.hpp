@@ -43,7 +43,7 @@ struct Rates {
   Vec3 acc{}; // without gravity for boundary particles (force per mass from the fluid)
   Real drho = 0;
   Real vsig = 0;
-  WallPlane wall; // fluid, with no penetration: the wall face or particle it would reach first (no_penetration.hpp)
+  WallChoice wall = no_wall; // fluid, with no penetration: the wall face or particle it would reach first
 };
 
 // The formulas below are written once for T = Real (one pair at a time: the scalar and
@@ -118,7 +118,7 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
 
 // The rates of particle i from its sums.
 [[nodiscard]] SURGE_HD inline Rates finish_rates(const WcsphParams& prm, bool fluid_i, const PairSums<Real>& s,
-                                                 const WallPlane& wall) {
+                                                 WallChoice wall) {
   Rates out;
   out.drho = s.drho + prm.delta * prm.kernel.h * prm.eos.c0 * s.diff;
   out.acc = fluid_i ? s.acc + prm.gravity : s.acc;
@@ -127,8 +127,8 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   return out;
 }
 
-// Writes particle i's rates (and, with the no-penetration condition, its wall plane).
-SURGE_HD inline void store_rates(const particles::ParticleView& p, WallPlane* faces, int i, const Rates& r) {
+// Writes particle i's rates (and, with the no-penetration condition, its wall's choice).
+SURGE_HD inline void store_rates(const particles::ParticleView& p, WallChoice* faces, int i, const Rates& r) {
   p.acc[i] = r.acc;
   p.drho[i] = r.drho;
   p.vsig[i] = r.vsig;
@@ -142,9 +142,31 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
                                                   Real keep_off, FirstContact& contact) {
   const std::uint32_t b = p.id[j] - gh.first_id;
   const WallReach reach = gh.reach[b];
-  for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face,
-                     [&](const WallPlane& w) { contact.consider(w, xi, vi, keep_off); });
-  if (r > 0) contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), xi, vi, keep_off);
+  for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face, [&](const WallPlane& w, int what) {
+    contact.consider(w, wall_choice(j, what), xi, vi, keep_off);
+  });
+  if (r > 0)
+    contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), wall_choice(j, sphere_of_wall), xi, vi,
+                     keep_off);
+}
+
+// The plane consider_wall offered as `choice` to the fluid particle at xi, rebuilt from
+// the same inputs: the update calls it at the positions the rates pass saw (wall particles
+// do not move, and the particle's own position is read before it moves), so it is the
+// same plane, bit for bit. No plane (normal 0) for no_wall.
+[[nodiscard]] SURGE_HD inline WallPlane held_plane(const WallHoldView& gh, const particles::ParticleView& p,
+                                                   WallChoice choice, const Vec3& xi, Real keep_off) {
+  if (choice == no_wall) return {};
+  const int j = static_cast<int>(choice >> 3), what = static_cast<int>(choice & 7);
+  const Vec3 xb = p.pos[j];
+  const Vec3 rij = xi - xb;
+  const std::uint32_t b = p.id[j] - gh.first_id;
+  const WallReach reach = gh.reach[b];
+  if (what == sphere_of_wall) return sphere_plane(xb, rij, std::sqrt(dot(rij, rij)), reach.sphere, keep_off);
+  WallPlane w;
+  Real d;
+  face_below(xb, face_offset(reach, gh.offset[b], gh.extra_face, what), rij, reach.patch, w, d);
+  return w;
 }
 
 // `gh`: with the no-penetration condition, the wall particles' ghost offsets and reach,
@@ -172,7 +194,7 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
-  return finish_rates(prm, fluid_i, s, contact.plane);
+  return finish_rates(prm, fluid_i, s, contact.choice);
 }
 
 } // namespace surge::sph

@@ -9,7 +9,7 @@ namespace surge::sph {
 
 // Computes and stores (store_rates) the rates of particles [begin, end).
 using RatesFn = void (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&,
-                         const WallHoldView&, WallPlane* faces, int begin, int end);
+                         const WallHoldView&, WallChoice* faces, int begin, int end);
 // The blocks of particles the solver hands to one call.
 constexpr int rates_block = 16;
 

@@ -13,10 +13,10 @@ namespace detail {
 // live in private member functions.
 
 // EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
-// condition (`faces` not null) the wall plane each fluid particle would reach first. On
+// condition (`faces` not null) which wall plane each fluid particle would reach first. On
 // CPUs the batched pair loop (wcsph_rates_simd.hpp) unless built or asked without it.
 void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbour::GridView& g,
-                   const particles::ParticleView& p, WallPlane* faces) {
+                   const particles::ParticleView& p, WallChoice* faces) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
 #if defined(SURGE_SIMD)
@@ -79,9 +79,10 @@ long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real
 
 // Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
 // an Euler step when `euler`. Boundary densities are clamped at rho0. With `faces` (no
-// penetration) fluid is kept `dmin` in front of its nearest wall face (no_penetration.hpp).
-void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const WallPlane* faces,
-                   Real dmin) {
+// penetration: the rates pass's wall choices) fluid is kept `dmin` in front of the wall
+// face it would reach first (no_penetration.hpp), the plane rebuilt where the rates saw it.
+void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const WallHoldView& gh,
+                   const WallChoice* faces, Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
@@ -91,10 +92,11 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
         if (p.kind[i] == fluid) {
           const Vec3 v_now = p.vel[i];
           const Vec3 a = p.acc[i];
-          Vec3 x = p.pos[i] + (v_now * dt + a * (dt * dt / 2)); // the association of the plain update
+          const Vec3 x_now = p.pos[i];
+          Vec3 x = x_now + (v_now * dt + a * (dt * dt / 2)); // the association of the plain update
           Vec3 v = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
           Vec3 v_prev = v_now;
-          if (faces) keep_off_face(faces[i], dmin, x, v, &v_prev);
+          if (faces) keep_off_face(held_plane(gh, p, faces[i], x_now, dmin), dmin, x, v, &v_prev);
           p.pos[i] = x;
           p.vel[i] = v;
           p.vel_prev[i] = v_prev;
@@ -107,7 +109,8 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
 }
 
 // Symplectic position-Verlet, first half: state n saved in *_prev, advanced by dt/2.
-void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, const WallPlane* faces, Real dmin) {
+void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, const WallHoldView& gh,
+                        const WallChoice* faces, Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -118,12 +121,13 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
           // A state the last corrector left past the plane is put back first: the corrector
           // starts from it again.
           Vec3 x0 = p.pos[i], v0 = p.vel[i];
-          if (faces) keep_off_face(faces[i], dmin, x0, v0);
+          const WallPlane face = faces ? held_plane(gh, p, faces[i], x0, dmin) : WallPlane{};
+          if (faces) keep_off_face(face, dmin, x0, v0);
           p.pos_prev[i] = x0;
           p.vel_prev[i] = v0;
           Vec3 x = x0 + v0 * half;
           Vec3 v = v0 + p.acc[i] * half;
-          if (faces) keep_off_face(faces[i], dmin, x, v);
+          if (faces) keep_off_face(face, dmin, x, v);
           p.pos[i] = x;
           p.vel[i] = v;
         } else {
@@ -134,7 +138,8 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
 }
 
 // Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2.
-void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, const WallPlane* faces, Real dmin) {
+void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, const WallHoldView& gh,
+                        const WallChoice* faces, Real dmin) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -144,7 +149,7 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, co
           const Vec3 v0 = p.vel_prev[i];
           Vec3 v1 = v0 + p.acc[i] * dt;
           Vec3 x = p.pos_prev[i] + (v0 + v1) * half;
-          if (faces) keep_off_face(faces[i], dmin, x, v1);
+          if (faces) keep_off_face(held_plane(gh, p, faces[i], p.pos[i], dmin), dmin, x, v1); // rates were at pos
           p.vel[i] = v1;
           p.pos[i] = x;
         } else {
@@ -187,6 +192,15 @@ std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
 } // namespace detail
 
 WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, const particles::HostParticles* held)
+    : WcsphSolver(cfg, init, Unloaded{}) {
+  store_.upload(held ? *held : init.particles);
+}
+
+WcsphSolver::WcsphSolver(const SolverConfig& cfg, InitialState&& init) : WcsphSolver(cfg, init, Unloaded{}) {
+  store_.upload(std::move(init.particles));
+}
+
+WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/)
     : cfg_(cfg), boundary_(cfg.boundary->make(init, cfg.prm)), first_boundary_id_(init.first_boundary_id),
       dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
   if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
@@ -198,7 +212,6 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, cons
       hi[k] = std::fmax(hi[k], p[k]);
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, cfg_.prm.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
-  store_.upload(held ? *held : init.particles);
 }
 
 void WcsphSolver::set_distribution(const Distribution& d) {
@@ -235,14 +248,14 @@ void WcsphSolver::sort_and_rates() {
 
 void WcsphSolver::rates() {
   const auto p = store_.view();
-  const auto g = grid_.view(p.pos);
+  const auto g = grid_.view(p.pos, p.kind);
   if (boundary_->prepares()) {
     const auto t = par::timed(par::Phase::Boundary);
     boundary_->prepare(cfg_.prm, g, p);
   }
-  WallPlane* planes = hold_.planes(p.n);
+  WallChoice* choices = hold_.choices(p.n);
   const auto t = par::timed(par::Phase::Rates);
-  detail::compute_rates(cfg_.prm, hold_.view(), g, p, planes);
+  detail::compute_rates(cfg_.prm, hold_.view(), g, p, choices);
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
@@ -289,19 +302,20 @@ StepStats WcsphSolver::step(double dt_max) {
   const bool symplectic = cfg_.integrator == Integrator::Symplectic;
   if (symplectic) store_.reserve_position_scratch();
   const auto p = store_.view();
-  const WallPlane* faces = hold_.planes();
+  const WallChoice* faces = hold_.choices();
+  const WallHoldView gh = hold_.view();
   const Real dmin = keep_off_distance(cfg_.prm.dp);
   if (!symplectic) {
     const auto t = par::timed(par::Phase::Integrate);
-    detail::verlet_update(p, dt, rho0, steps_ % cfg_.euler_every == 0, faces, dmin);
+    detail::verlet_update(p, dt, rho0, steps_ % cfg_.euler_every == 0, gh, faces, dmin);
   } else {
     {
       const auto t = par::timed(par::Phase::Integrate);
-      detail::symplectic_predict(p, dt, rho0, faces, dmin);
+      detail::symplectic_predict(p, dt, rho0, gh, faces, dmin);
     }
     rates();
     const auto t = par::timed(par::Phase::Integrate);
-    detail::symplectic_correct(p, dt, rho0, faces, dmin);
+    detail::symplectic_correct(p, dt, rho0, gh, faces, dmin);
   }
   ++steps_;
   fresh_ = false;

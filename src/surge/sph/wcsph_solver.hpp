@@ -29,6 +29,9 @@ public:
   // Holds init.particles, or `held` instead (a distributed run starts empty and receives its
   // slab; the grid still covers every particle of init).
   WcsphSolver(const SolverConfig& cfg, const InitialState& init, const particles::HostParticles* held = nullptr);
+  // The same, taking init's particles (released as they are uploaded: the construction's
+  // peak memory stays below the run's); init's other members are left as they were.
+  WcsphSolver(const SolverConfig& cfg, InitialState&& init);
 
   // Sorts, computes rates, chooses dt (clipped to dt_max), integrates, flags removals.
   StepStats step(double dt_max);
@@ -61,7 +64,10 @@ public:
   [[nodiscard]] std::size_t bytes() const {
     return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes();
   }
-  [[nodiscard]] neighbour::GridView grid_view() { return grid_.view(store_.view().pos); }
+  [[nodiscard]] neighbour::GridView grid_view() {
+    const particles::ParticleView v = store_.view();
+    return grid_.view(v.pos, v.kind);
+  }
   particles::ParticleView view() { return store_.view(); }
   // What the rates kernel reads of the walls for the no-penetration condition.
   [[nodiscard]] WallHoldView hold_view() const { return hold_.view(); }
@@ -74,6 +80,9 @@ public:
   void invalidate() { fresh_ = false; }
 
 private:
+  // Everything but the particles (the public constructors upload them).
+  struct Unloaded {};
+  WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/);
   void sort_and_rates();
   void rates(); // the wall model's boundary densities, EOS and rates at the current positions
   double dt_from_rates();

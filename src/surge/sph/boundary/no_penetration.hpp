@@ -71,19 +71,37 @@ SURGE_HD inline bool face_below(const Vec3& xb, const Vec3& o, const Vec3& r, Re
   return true;
 }
 
-// Calls f(plane) for each face wall particle b (at xb, ghost offset `own`, reach `reach`,
-// extra-face offsets `extra`) holds the fluid particle at xb + r off: its own face, then
-// its extra ones, each where face_below finds the particle in front of it within the patch
-// (the rates kernel and the coverage tests share this).
+// Which plane holds a fluid particle off, as the rates pass chose it: wall particle j's own
+// face (what 0), one of its extra faces (what 1 to 3) or its sphere (what 4), coded as
+// j << 3 | what; no_wall when none. 4 B per particle where the plane itself is 16: the
+// update rebuilds the plane from it (held_plane, wcsph_rates.hpp) from the inputs the rates
+// pass used, so with the same bits.
+using WallChoice = std::uint32_t;
+inline constexpr WallChoice no_wall = ~WallChoice{0};
+inline constexpr int own_face = 0, sphere_of_wall = 4;
+[[nodiscard]] SURGE_HD inline WallChoice wall_choice(int j, int what) {
+  return static_cast<WallChoice>(j) << 3 | static_cast<WallChoice>(what);
+}
+// The most particles one process can hold with the no-penetration condition on.
+inline constexpr long long max_held_particles = 1LL << 29;
+
+// The offset of face `what` (own_face, or 1 to 3: the extra faces) of a wall particle.
+[[nodiscard]] SURGE_HD inline Vec3 face_offset(const WallReach& reach, const Vec3& own, const Vec3* extra, int what) {
+  return what == own_face ? own : extra[(reach.extra >> 2) + what - 1];
+}
+
+// Calls f(plane, what) for each face wall particle b (at xb, ghost offset `own`, reach
+// `reach`, extra-face offsets `extra`) holds the fluid particle at xb + r off: its own face
+// (what = own_face), then its extra ones (1 to 3), each where face_below finds the particle
+// in front of it within the patch (the rates kernel and the coverage tests share this).
 template <class F>
 SURGE_HD void for_each_held_face(const Vec3& xb, const Vec3& r, const WallReach& reach, const Vec3& own,
                                  const Vec3* extra, F&& f) {
   WallPlane w;
   Real d;
-  if (face_below(xb, own, r, reach.patch, w, d)) f(w);
-  if (reach.extra >= 0)
-    for (int k = 0; k < (reach.extra & 3); ++k)
-      if (face_below(xb, extra[(reach.extra >> 2) + k], r, reach.patch, w, d)) f(w);
+  const int faces = 1 + (reach.extra >= 0 ? reach.extra & 3 : 0);
+  for (int what = own_face; what < faces; ++what)
+    if (face_below(xb, face_offset(reach, own, extra, what), r, reach.patch, w, d)) f(w, what);
 }
 
 // How far in front of a wall face fluid is kept.
@@ -107,16 +125,16 @@ SURGE_HD void for_each_held_face(const Vec3& xb, const Vec3& r, const WallReach&
 // while another was held), else the one it would reach first at its velocity, else the
 // nearest.
 struct FirstContact {
-  WallPlane plane;
+  WallChoice choice = no_wall;
   int tier = 3;
   Real key = Real(1e30);
-  SURGE_HD void consider(const WallPlane& w, const Vec3& x, const Vec3& v, Real dmin) {
+  SURGE_HD void consider(const WallPlane& w, WallChoice c, const Vec3& x, const Vec3& v, Real dmin) {
     const Real d = w.distance(x) - dmin;
     const Real vn = dot(v, w.n);
     const int t = d < 0 ? 0 : (vn < 0 ? 1 : 2);
     const Real k = t == 0 ? d : (t == 1 ? d / -vn : d);
     if (t < tier || (t == tier && k < key)) {
-      plane = w;
+      choice = c;
       tier = t;
       key = k;
     }

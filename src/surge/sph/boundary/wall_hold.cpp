@@ -1,5 +1,8 @@
 #include "surge/sph/boundary/wall_hold.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace surge::sph {
 
 WallHold::WallHold(const InitialState& init, const Vec3* shared)
@@ -14,10 +17,14 @@ WallHold::WallHold(const InitialState& init, const Vec3* shared)
   par::upload(extra_faces_, init.extra_faces);
 }
 
-WallPlane* WallHold::planes(int n) {
+WallChoice* WallHold::choices(int n) {
   if (!on_) return nullptr;
-  planes_.resize(static_cast<std::size_t>(n));
-  return planes_.data();
+  if (n >= max_held_particles)
+    throw std::runtime_error("the no-penetration condition (sph.no_penetration) handles at most " +
+                             std::to_string(max_held_particles) + " particles in one process; this one holds " +
+                             std::to_string(n) + ": run on more processes or turn it off");
+  choices_.resize(static_cast<std::size_t>(n));
+  return choices_.data();
 }
 
 } // namespace surge::sph

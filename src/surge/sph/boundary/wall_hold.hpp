@@ -1,6 +1,6 @@
 // The no-penetration condition (no_penetration.hpp) with any wall model
 // (sph.no_penetration): what the wall particles hold (their faces, from their ghost
-// offsets, and reach) and, from each rates pass, the plane every fluid particle would
+// offsets, and reach) and, from each rates pass, which plane every fluid particle would
 // reach first, which the update keeps it dp/4 in front of.
 #pragma once
 #include "surge/par/parallel.hpp"
@@ -21,21 +21,21 @@ public:
   [[nodiscard]] WallHoldView view() const {
     return {on_, first_id_, shared_ ? shared_ : offset_.data(), reach_.data(), extra_faces_.data()};
   }
-  // One plane per particle, written by the rates pass: null when off.
-  [[nodiscard]] WallPlane* planes(int n);
-  [[nodiscard]] const WallPlane* planes() const { return on_ ? planes_.data() : nullptr; }
+  // One wall choice per particle (no_penetration.hpp), written by the rates pass: null when off.
+  [[nodiscard]] WallChoice* choices(int n);
+  [[nodiscard]] const WallChoice* choices() const { return on_ ? choices_.data() : nullptr; }
   [[nodiscard]] std::size_t bytes() const {
-    return offset_.bytes() + reach_.bytes() + extra_faces_.bytes() + planes_.bytes();
+    return offset_.bytes() + reach_.bytes() + extra_faces_.bytes() + choices_.bytes();
   }
 
 private:
   bool on_ = false;
   std::uint32_t first_id_ = 0;
-  const Vec3* shared_ = nullptr;  // the wall model's ghost offsets, if it keeps them
-  par::Buffer<Vec3> offset_;      // the wall particles' ghost offsets, unless shared
-  par::Buffer<WallReach> reach_;  // 12 B per wall particle
-  par::Buffer<Vec3> extra_faces_; // 12 B per extra face of a solid box's or mesh's edge particle
-  par::Buffer<WallPlane> planes_; // 16 B per particle
+  const Vec3* shared_ = nullptr;    // the wall model's ghost offsets, if it keeps them
+  par::Buffer<Vec3> offset_;        // the wall particles' ghost offsets, unless shared
+  par::Buffer<WallReach> reach_;    // 12 B per wall particle
+  par::Buffer<Vec3> extra_faces_;   // 12 B per extra face of a solid box's or mesh's edge particle
+  par::Buffer<WallChoice> choices_; // 4 B per particle
 };
 
 } // namespace surge::sph
