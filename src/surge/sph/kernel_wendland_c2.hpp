@@ -18,11 +18,13 @@ struct WendlandC2 {
   }
 
   [[nodiscard]] SURGE_HD Real support() const { return 2 * h; }
-  [[nodiscard]] SURGE_HD Real w(Real r) const {
-    const Real q = r * h_inv;
-    if (q >= 2) return 0;
-    const Real t = 1 - q / 2;
-    return ad * t * t * t * t * (2 * q + 1);
+  // T as for dw_over_r.
+  template <class T>
+  [[nodiscard]] SURGE_HD SURGE_INLINE T w(T r) const {
+    const T q = r * h_inv;
+    const T t = 1 - q / 2;
+    const T f = ad * t * t * t * t * (2 * q + 1);
+    return q >= 2 ? T{} : f;
   }
   // (1/r) dW/dr, so that grad_i W_ij = r_ij * f(r); finite at r -> 0. T is Real, or a
   // SIMD vector of Reals (one r per lane; the pair loop of wcsph_rates_batched.inc).

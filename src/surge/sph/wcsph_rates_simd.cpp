@@ -1,6 +1,7 @@
 #include "surge/sph/wcsph_rates_simd.hpp"
 
 #include "surge/par/simd_isa.hpp"
+#include "surge/sph/boundary/mdbc_density.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -26,6 +27,16 @@ const char* batched_rates_name() { return par::simd_isa(); }
 
 RatesFn batched_rates() {
   static const RatesFn f = batched_rates(batched_rates_name());
+  return f;
+}
+
+MdbcFn batched_mdbc(const char* isa) {
+  if (!par::simd_isa_here(isa)) return nullptr;
+  return std::strcmp(isa, "avx2") == 0 ? &avx2::mdbc_range : &sse2::mdbc_range;
+}
+
+MdbcFn batched_mdbc() {
+  static const MdbcFn f = batched_mdbc(batched_rates_name());
   return f;
 }
 

@@ -5,6 +5,8 @@
 #pragma once
 #include "surge/sph/wcsph_rates.hpp"
 
+#include <cstdint>
+
 namespace surge::sph {
 
 // Computes and stores (store_rates) the rates of particles [begin, end).
@@ -21,5 +23,13 @@ RatesFn batched_rates(const char* isa);
 RatesFn batched_rates();
 // The name of what batched_rates() runs ("avx2", "sse2" or "off"), for benchmark reports.
 const char* batched_rates_name();
+
+// mDBC's boundary densities (mdbc_density.hpp) of the boundary particles among [begin, end),
+// their ghost sums 8 neighbours at a time; `offset`: the ghost offsets by id - first_id.
+using MdbcFn = void (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&,
+                        const Vec3* offset, std::uint32_t first_id, int begin, int end);
+// As batched_rates, for mDBC's densities (the same instruction set).
+MdbcFn batched_mdbc(const char* isa);
+MdbcFn batched_mdbc();
 
 } // namespace surge::sph

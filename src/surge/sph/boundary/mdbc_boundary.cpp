@@ -4,6 +4,9 @@
 // the body particles' ones with their spheres.
 #include "surge/sph/boundary/boundary_model.hpp"
 #include "surge/sph/boundary/mdbc_density.hpp"
+#if defined(SURGE_SIMD)
+#include "surge/sph/wcsph_rates_simd.hpp"
+#endif
 
 #include <cmath>
 
@@ -14,6 +17,15 @@ namespace detail {
 // nvcc's extended lambdas may not live in private member functions).
 void mdbc_densities(const WcsphParams& prm, const Vec3* offset, std::uint32_t first_id, const neighbour::GridView& g,
                     const particles::ParticleView& p) {
+#if defined(SURGE_SIMD)
+  if (const MdbcFn batched = batched_mdbc()) { // the CPU's: 8 neighbours at a time
+    const int blocks = (p.n + rates_block - 1) / rates_block;
+    par::parallel_for_uneven(blocks, [=](int b) {
+      batched(prm, g, p, offset, first_id, b * rates_block, b + 1 < blocks ? (b + 1) * rates_block : p.n);
+    });
+    return;
+  }
+#endif
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real rho0 = prm.eos.rho0;
   par::parallel_for_uneven(

@@ -55,38 +55,57 @@ namespace surge::sph {
   return det;
 }
 
-// The mDBC density of the boundary particle at xb with ghost node xg; `current` when no
-// fluid is near the ghost.
+// The sums a ghost node gathers over its fluid neighbours: A and the right-hand side b
+// (the header's system). T is Real, or a SIMD vector of Reals (one neighbour per lane: the
+// batched CPU pass of wcsph_rates_batched.inc, whose lanes are summed before the solve).
+template <class T>
+struct GhostSums {
+  T a[4][4]{};
+  T b[4]{};
+};
+
+// Adds the terms of fluid neighbour j: d = x_g - x_j, r = |d|, rho = rho_j, `vol` its
+// volume m / rho_j (0 in a batch's unused lanes: every term is then exactly 0).
+template <class T>
+SURGE_HD SURGE_INLINE void add_ghost_terms(const WcsphParams& prm, const Vec3T<T>& d, T r, T rho, T vol,
+                                           GhostSums<T>& s) {
+  // grad W_gj (with respect to x_g) = d (1/r) dW/dr
+  const T w = prm.kernel.w(r) * vol;
+  const Vec3T<T> gw = d * (prm.kernel.dw_over_r(r) * vol);
+  const Vec3T<T> dx = d * splat<T>(Real(-1)); // x_j - x_g
+  s.a[0][0] += w;
+  s.b[0] += rho * w;
+  for (int k = 0; k < 3; ++k) {
+    s.a[0][k + 1] += dx[k] * w;
+    s.a[k + 1][0] += gw[k];
+    s.b[k + 1] += rho * gw[k];
+    for (int l = 0; l < 3; ++l) s.a[k + 1][l + 1] += dx[l] * gw[k];
+  }
+}
+
+// The density of the boundary particle at xb from its ghost node's sums; `current` when no
+// fluid is near the ghost, the Shepard average where A is near singular.
+[[nodiscard]] SURGE_HD inline Real ghost_density(GhostSums<Real>& s, const Vec3& xb, const Vec3& xg, Real current) {
+  if (!(s.a[0][0] > 0)) return current;
+  const Real shepard = s.b[0] / s.a[0][0];
+  const Real det = solve4(s.a, s.b);
+  const Real det_abs = det < 0 ? -det : det;
+  if (!(det_abs >= Real(1e-3))) return shepard;
+  const Vec3 grad{s.b[1], s.b[2], s.b[3]};
+  return s.b[0] + dot(xb - xg, grad);
+}
+
+// The mDBC density of the boundary particle at xb with ghost node xg, one neighbour at a
+// time (the CUDA and scalar paths); `current` when no fluid is near the ghost.
 [[nodiscard]] SURGE_HD inline Real mdbc_density(const WcsphParams& prm, const neighbour::GridView& g,
                                                 const particles::ParticleView& p, const Vec3& xb, const Vec3& xg,
                                                 Real current) {
   const Real r2max = prm.kernel.support() * prm.kernel.support();
-  Real a[4][4] = {};
-  Real b[4] = {};
+  GhostSums<Real> s;
   neighbour::for_each_fluid_neighbour(g, xg, r2max, [&](int j, const Vec3& d, Real r2) {
-    // d = x_g - x_j; grad W_gj (with respect to x_g) = d (1/r) dW/dr
-    const Real r = std::sqrt(r2);
-    const Real vol = prm.mass / p.rho[j];
-    const Real w = prm.kernel.w(r) * vol;
-    const Vec3 gw = d * (prm.kernel.dw_over_r(r) * vol);
-    const Vec3 dx = d * Real(-1); // x_j - x_g
-    const Real rho = p.rho[j];
-    a[0][0] += w;
-    b[0] += rho * w;
-    for (int k = 0; k < 3; ++k) {
-      a[0][k + 1] += dx[k] * w;
-      a[k + 1][0] += gw[k];
-      b[k + 1] += rho * gw[k];
-      for (int l = 0; l < 3; ++l) a[k + 1][l + 1] += dx[l] * gw[k];
-    }
+    add_ghost_terms(prm, d, std::sqrt(r2), p.rho[j], prm.mass / p.rho[j], s);
   });
-  if (!(a[0][0] > 0)) return current;
-  const Real shepard = b[0] / a[0][0];
-  const Real det = solve4(a, b);
-  const Real det_abs = det < 0 ? -det : det;
-  if (!(det_abs >= Real(1e-3))) return shepard;
-  const Vec3 grad{b[1], b[2], b[3]};
-  return b[0] + dot(xb - xg, grad);
+  return ghost_density(s, xb, xg, current);
 }
 
 } // namespace surge::sph
