@@ -3,6 +3,7 @@
 #include "surge/par/simd_isa.hpp"
 #include "surge/sph/boundary/mdbc_density.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
