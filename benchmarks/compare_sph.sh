@@ -4,8 +4,8 @@
 # alternately ROUNDS times on the same case and thread count, and prints each run and
 # the ratio of the medians (timings on a shared machine drift by +-20 %; alternating
 # old and new and taking medians keeps the drift out of the ratio).
-# usage: benchmarks/compare_sph.sh REV [CASE] [STEPS] [THREADS] [ROUNDS]
-#   e.g. benchmarks/compare_sph.sh 825d0fd cases/bench_dambreak.yaml 40 2 5
+# usage: benchmarks/compare_sph.sh REV [CASE] [STEPS] [THREADS] [ROUNDS] [--set KEY=VALUE]...
+#   e.g. benchmarks/compare_sph.sh 825d0fd cases/bench_dambreak.yaml 40 2 5 --set sph.boundary=mdbc
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev=${1:?usage: compare_sph.sh REV [CASE] [STEPS] [THREADS] [ROUNDS]}
@@ -13,6 +13,8 @@ case_file=${2:-cases/bench_dambreak.yaml}
 steps=${3:-40}
 threads=${4:-2}
 rounds=${5:-5}
+shift $(($# < 5 ? $# : 5))
+sets=("$@") # --set KEY=VALUE pairs, passed to both
 old_src=build/compare-src-$rev
 old_build=build/compare-$rev
 if [ ! -x "$old_build/benchmarks/bench_sph" ]; then
@@ -28,7 +30,7 @@ for r in $(seq "$rounds"); do
   for which in old new; do
     bin=build/cpu/benchmarks/bench_sph
     [ "$which" = old ] && bin=$old_build/benchmarks/bench_sph
-    row=$("$bin" "$case_file" "$steps" "$threads")
+    row=$("$bin" "$case_file" "$steps" "$threads" "${sets[@]}")
     echo "$which $row" | tee -a "$results" | cut -c1-160
   done
 done
