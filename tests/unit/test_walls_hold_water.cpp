@@ -372,11 +372,11 @@ TEST(NoPenetration, TheUpdateRebuildsThePlaneTheRatesPassChose) {
       sph::WallPlane offered;
       bool found = false;
       if (what == sph::sphere_of_wall) {
-        offered = sph::sphere_plane(p.pos[j], rij, std::sqrt(dot(rij, rij)), gh.reach[b].sphere, keep_off);
+        offered = sph::sphere_plane(p.pos[j], rij, std::sqrt(dot(rij, rij)), sph::wall_reach(gh, b).sphere, keep_off);
         found = true;
         ++by_sphere;
       } else {
-        sph::for_each_held_face(p.pos[j], rij, gh.reach[b], gh.offset[b], gh.extra_face,
+        sph::for_each_held_face(p.pos[j], rij, sph::wall_reach(gh, b), sph::wall_offset(gh, b), gh.extra_face,
                                 [&](const sph::WallPlane& w, int k) {
                                   if (k == what) offered = w, found = true;
                                 });

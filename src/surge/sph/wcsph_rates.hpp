@@ -141,8 +141,8 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
                                                   const Vec3& xi, const Vec3& vi, const Vec3& rij, Real r,
                                                   Real keep_off, FirstContact& contact) {
   const std::uint32_t b = p.id[j] - gh.first_id;
-  const WallReach reach = gh.reach[b];
-  for_each_held_face(p.pos[j], rij, reach, gh.offset[b], gh.extra_face, [&](const WallPlane& w, int what) {
+  const WallReach reach = wall_reach(gh, b);
+  for_each_held_face(p.pos[j], rij, reach, wall_offset(gh, b), gh.extra_face, [&](const WallPlane& w, int what) {
     contact.consider(w, wall_choice(j, what), xi, vi, keep_off);
   });
   if (r > 0)
@@ -161,11 +161,11 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const Vec3 xb = p.pos[j];
   const Vec3 rij = xi - xb;
   const std::uint32_t b = p.id[j] - gh.first_id;
-  const WallReach reach = gh.reach[b];
+  const WallReach reach = wall_reach(gh, b);
   if (what == sphere_of_wall) return sphere_plane(xb, rij, std::sqrt(dot(rij, rij)), reach.sphere, keep_off);
   WallPlane w;
   Real d;
-  face_below(xb, face_offset(reach, gh.offset[b], gh.extra_face, what), rij, reach.patch, w, d);
+  face_below(xb, face_offset(reach, wall_offset(gh, b), gh.extra_face, what), rij, reach.patch, w, d);
   return w;
 }
 

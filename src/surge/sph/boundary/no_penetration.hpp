@@ -31,16 +31,31 @@ struct WallReach {
   std::int32_t extra = -1;
 };
 
-// What the rates kernel reads of the wall particles (WallHold owns it): each one's ghost
-// offset (its face lies at x_b + offset/2), reach and extra faces, by id - first_id (wall
-// ids come before body ids).
+// A wall particle's ghost offset (its face lies at x_b + offset/2) and reach. Walls are
+// lattices: their particles share a few of these (a box: one per layer of each face, edge
+// and corner), so each particle holds the index of its row (4 B instead of 24).
+struct WallRow {
+  Vec3 offset; // unused where the wall model keeps the offsets (WallHoldView::offset)
+  WallReach reach;
+};
+
+// What the rates kernel reads of the wall particles (WallHold owns it), by b = id -
+// first_id (wall ids come before body ids): wall_offset and wall_reach.
 struct WallHoldView {
   bool hold = false; // the no-penetration condition is on: fluid notes the wall plane it would reach first
   std::uint32_t first_id = 0;
-  const Vec3* offset = nullptr;
-  const WallReach* reach = nullptr;
+  const Vec3* offset = nullptr;       // the wall model's ghost offsets (mDBC), or null: the rows'
+  const std::uint32_t* row = nullptr; // each wall particle's row
+  const WallRow* rows = nullptr;
   const Vec3* extra_face = nullptr; // offsets of the faces in WallReach::extra
 };
+
+[[nodiscard]] SURGE_HD inline Vec3 wall_offset(const WallHoldView& gh, std::uint32_t b) {
+  return gh.offset ? gh.offset[b] : gh.rows[gh.row[b]].offset;
+}
+[[nodiscard]] SURGE_HD inline WallReach wall_reach(const WallHoldView& gh, std::uint32_t b) {
+  return gh.rows[gh.row[b]].reach;
+}
 
 // A wall face near a fluid particle: the plane n.x = c, n pointing into the water. The
 // default (n = 0) is no face: every point is far in front of it.

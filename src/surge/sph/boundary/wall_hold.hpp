@@ -13,27 +13,27 @@ class WallHold {
 public:
   WallHold() = default; // off
   // On: `shared`, the wall model's ghost offsets if it keeps them (wall particles first),
-  // else null and the wall particles' own are kept here (12 B each).
+  // else null and the wall particles' own are kept here, in their rows.
   WallHold(const InitialState& init, const Vec3* shared);
   [[nodiscard]] bool on() const { return on_; }
   // What the rates kernel reads (hold false when off); built on each call, so that it
   // never outlives a buffer.
   [[nodiscard]] WallHoldView view() const {
-    return {on_, first_id_, shared_ ? shared_ : offset_.data(), reach_.data(), extra_faces_.data()};
+    return {on_, first_id_, shared_, row_.data(), rows_.data(), extra_faces_.data()};
   }
   // One wall choice per particle (no_penetration.hpp), written by the rates pass: null when off.
   [[nodiscard]] WallChoice* choices(int n);
   [[nodiscard]] const WallChoice* choices() const { return on_ ? choices_.data() : nullptr; }
   [[nodiscard]] std::size_t bytes() const {
-    return offset_.bytes() + reach_.bytes() + extra_faces_.bytes() + choices_.bytes();
+    return row_.bytes() + rows_.bytes() + extra_faces_.bytes() + choices_.bytes();
   }
 
 private:
   bool on_ = false;
   std::uint32_t first_id_ = 0;
   const Vec3* shared_ = nullptr;    // the wall model's ghost offsets, if it keeps them
-  par::Buffer<Vec3> offset_;        // the wall particles' ghost offsets, unless shared
-  par::Buffer<WallReach> reach_;    // 12 B per wall particle
+  par::Buffer<std::uint32_t> row_;  // 4 B per wall particle: its row of rows_
+  par::Buffer<WallRow> rows_;       // the distinct (offset, reach) of the walls
   par::Buffer<Vec3> extra_faces_;   // 12 B per extra face of a solid box's or mesh's edge particle
   par::Buffer<WallChoice> choices_; // 4 B per particle
 };
