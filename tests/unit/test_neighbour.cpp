@@ -153,19 +153,23 @@ std::vector<int> wet_cell_verdicts(const particles::ParticleView& v, const neigh
 // The cells whose stencil holds fluid (UniformGrid::mark_wet, what lets boundary particles
 // far from water skip their scan) against brute force: a cell is wet iff some fluid
 // particle's cell lies within `span` cells of it along every axis. Water in one corner of
-// a box of walls, particles also outside the grid (clamped into edge cells).
+// a box of walls and in a band across two words of flags, particles also outside the grid
+// (clamped into edge cells). Dropping either carry between words fails it.
 TEST(Neighbour, WetCellsMatchBruteForce) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-0.05f, 1.05f);
   particles::HostParticles h;
   for (std::uint32_t i = 0; i < 600; ++i) {
     const Vec3 x{u(rng), u(rng), u(rng)};
-    const bool fluid = x.x < 0.3f && x.y < 0.4f && x.z < 0.5f;
+    // a corner of water, and a band across x = 0.8 (cells 31 and 32 of a row of 41: the
+    // boundary between its two words of flags)
+    const bool fluid =
+        (x.x < 0.3f && x.y < 0.4f && x.z < 0.5f) || (x.x > 0.78f && x.x < 0.82f && x.y > 0.2f && x.z > 0.2f);
     h.push(x, Vec3{}, 1000, fluid ? Kind::Fluid : Kind::Wall, i);
   }
-  // 9,261 cells (more than the 2,400 bytes of the spent keys: scratch of its own) and 343
-  // (the dilation in the spent keys and permutation).
-  for (const float radius : {0.1f, 0.3f}) {
+  // Rows of 21, 7 and 41 cells along x: one 32-bit word of flags per row, and two (the
+  // dilation along x carries bits across the words' boundary).
+  for (const float radius : {0.1f, 0.3f, 0.05f}) {
     particles::ParticleStore store;
     store.upload(h);
     neighbour::UniformGrid grid;
