@@ -46,6 +46,7 @@ namespace {
   X(GDALSetDescription)
 
 struct Gdal {
+// NOLINTNEXTLINE(bugprone-macro-parentheses): f names a member, which parentheses would break
 #define SURGE_GDAL_POINTER(f) decltype(&::f) f = nullptr;
   SURGE_GDAL_FUNCTIONS(SURGE_GDAL_POINTER)
 #undef SURGE_GDAL_POINTER
