@@ -106,7 +106,7 @@ template <class L>
 void pair_laws(const DemView& v, const Material* mats) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int a) {
-        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, a, [&](std::uint32_t, int b, std::uint32_t p) {
+        neighbour::for_each_own_pair(v.list, a, [&](std::uint32_t, int b, std::uint32_t p) {
           const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
           store_law(v.law[p], L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar));
         });
@@ -134,7 +134,7 @@ void pair_pass(const DemView& v, Real dt) {
         const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         // The pairs i is A of (the partner evaluates the others).
-        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int j, std::uint32_t p) {
+        neighbour::for_each_own_pair(v.list, i, [&](std::uint32_t, int j, std::uint32_t p) {
           const Real dist = norm(xi - v.pos[j]);
           const std::uint32_t partner = v.hist[p].partner;
           if (!in_contact(dist, ri + v.radius[j], v.hist[p].bonded != 0)) {
@@ -310,7 +310,7 @@ void bond(const DemView& v, const Material* mats, Real gap) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         if (!mats[v.material[i]].bonded) return;
-        neighbour::for_each_own_pair<max_contacts>(v.list, v.id, i, [&](std::uint32_t, int j, std::uint32_t p) {
+        neighbour::for_each_own_pair(v.list, i, [&](std::uint32_t, int j, std::uint32_t p) {
           if (!mats[v.material[j]].bonded) return;
           if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) return;
           v.hist[p].bonded = 1;

@@ -38,9 +38,8 @@ SURGE_HD inline void for_each_listed(const PairListView& l, const std::uint32_t*
 // f(k, j, pair) for each pair item i is A of (k: its rank among them), in list order:
 // its range of pairs, numbered in list order, with their B items (pair_b; set by
 // pair_partners after each rebuild), so no walk over the list and no test per entry.
-template <int Max, class F>
-SURGE_HD inline void for_each_own_pair(const PairListView& l, const std::uint32_t* id, int i, F&& f) {
-  (void)id;
+template <class F>
+SURGE_HD inline void for_each_own_pair(const PairListView& l, int i, F&& f) {
   const std::uint32_t p0 = l.pair_begin[i], count = l.pair_count[i];
   for (std::uint32_t k = 0; k < count; ++k) f(k, static_cast<int>(l.pair_b[p0 + k]), p0 + k);
 }
