@@ -366,7 +366,7 @@ TEST(NoPenetration, TheUpdateRebuildsThePlaneTheRatesPassChose) {
       if (choice == sph::no_wall) continue;
       ++chosen;
       // The plane offered under that choice, found again among the wall neighbours.
-      const int j = static_cast<int>(choice >> 3), what = static_cast<int>(choice & 7);
+      const int j = sph::chosen_wall(choice), what = sph::chosen_what(choice);
       const Vec3 rij = p.pos[i] - p.pos[j];
       const std::uint32_t b = p.id[j] - gh.first_id;
       sph::WallPlane offered;

@@ -157,7 +157,7 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
 [[nodiscard]] SURGE_HD inline WallPlane held_plane(const WallHoldView& gh, const particles::ParticleView& p,
                                                    WallChoice choice, const Vec3& xi, Real keep_off) {
   if (choice == no_wall) return {};
-  const int j = static_cast<int>(choice >> 3), what = static_cast<int>(choice & 7);
+  const int j = chosen_wall(choice), what = chosen_what(choice);
   const Vec3 xb = p.pos[j];
   const Vec3 rij = xi - xb;
   const std::uint32_t b = p.id[j] - gh.first_id;

@@ -97,6 +97,9 @@ inline constexpr int own_face = 0, sphere_of_wall = 4;
 [[nodiscard]] SURGE_HD inline WallChoice wall_choice(int j, int what) {
   return static_cast<WallChoice>(j) << 3 | static_cast<WallChoice>(what);
 }
+// The wall particle and the what of a choice (not no_wall).
+[[nodiscard]] SURGE_HD inline int chosen_wall(WallChoice c) { return static_cast<int>(c >> 3); }
+[[nodiscard]] SURGE_HD inline int chosen_what(WallChoice c) { return static_cast<int>(c & 7); }
 // The most particles one process can hold with the no-penetration condition on.
 inline constexpr long long max_held_particles = 1LL << 29;
 
