@@ -145,7 +145,8 @@ TEST(SphSimd, MdbcGhostDensitiesMatchScalar) {
     const sph::MdbcFn f = sph::batched_mdbc(isa);
     if (!f) continue;
     std::copy(before.begin(), before.end(), p.rho);
-    for (int b = 0; b < p.n; b += sph::rates_block) f(prm, g, p, gh.offset, gh.first_id, b, std::min(p.n, b + 16));
+    for (int b = 0; b < p.n; b += sph::rates_block)
+      f(prm, g, p, gh.offset, gh.first_id, b, std::min(p.n, b + sph::rates_block));
     got.emplace_back(p.rho, p.rho + p.n);
   }
   ASSERT_FALSE(got.empty());

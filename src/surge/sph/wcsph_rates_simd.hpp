@@ -14,6 +14,13 @@ using RatesFn = void (*)(const WcsphParams&, const neighbour::GridView&, const p
                          const WallHoldView&, WallChoice* faces, int begin, int end);
 // The blocks of particles the solver hands to one call.
 constexpr int rates_block = 16;
+// Calls f(begin, end) for the blocks of rates_block consecutive particles of [0, n), as the
+// batched passes take them (dynamic chunks: a particle's cost varies along the sorted index).
+template <class F>
+void for_each_rates_block(int n, F f) {
+  const int blocks = (n + rates_block - 1) / rates_block;
+  par::parallel_for_uneven(blocks, [=](int b) { f(b * rates_block, b + 1 < blocks ? (b + 1) * rates_block : n); });
+}
 
 // The batched rates for one instruction set: "avx2" or "sse2"; null for a set this CPU
 // lacks or an unknown name.

@@ -22,10 +22,7 @@ void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbo
 #if defined(SURGE_SIMD)
   if (const RatesFn batched = batched_rates()) {
     // Blocks of consecutive particles (one cell's share its candidates in the AVX2 copy).
-    const int blocks = (p.n + rates_block - 1) / rates_block;
-    par::parallel_for_uneven(blocks, [=](int b) {
-      batched(prm, g, p, gh, faces, b * rates_block, b + 1 < blocks ? (b + 1) * rates_block : p.n);
-    });
+    for_each_rates_block(p.n, [=](int begin, int end) { batched(prm, g, p, gh, faces, begin, end); });
     return;
   }
 #endif

@@ -19,10 +19,7 @@ void mdbc_densities(const WcsphParams& prm, const Vec3* offset, std::uint32_t fi
                     const particles::ParticleView& p) {
 #if defined(SURGE_SIMD)
   if (const MdbcFn batched = batched_mdbc()) { // the CPU's: 8 neighbours at a time
-    const int blocks = (p.n + rates_block - 1) / rates_block;
-    par::parallel_for_uneven(blocks, [=](int b) {
-      batched(prm, g, p, offset, first_id, b * rates_block, b + 1 < blocks ? (b + 1) * rates_block : p.n);
-    });
+    for_each_rates_block(p.n, [=](int begin, int end) { batched(prm, g, p, offset, first_id, begin, end); });
     return;
   }
 #endif
