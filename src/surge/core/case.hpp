@@ -64,6 +64,29 @@ struct FluidRegion {
 
 enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };
 
+// A wall's prescribed motion (motion/motion_law.hpp): a law chosen by name and the
+// parameters it reads (each law's entry in motion/motion_laws.cpp says which). The law
+// gives the displacement of the pivot and a rotation about it, from `start` on.
+struct MotionSpec {
+  std::string law;                // empty: the wall stands still
+  double start = 0;               // the wall rests until then [s]
+  Vec3d velocity{};               // constant_velocity; uniform_acceleration: the velocity at start
+  Vec3d acceleration{};           // uniform_acceleration
+  Vec3d direction{1, 0, 0};       // ln_cosh, capped_acceleration, solitary: the line of motion
+  double s0 = 0, t0 = 0;          // ln_cosh: s = s0 ln cosh(t / t0)
+  double accel = 0, terminal = 0; // capped_acceleration: s = accel t^2 / 2 until the speed reaches terminal
+  double period = 0, phase = 0;   // sinusoidal [s], [degrees]
+  Vec3d amplitude{};              // sinusoidal: translation amplitude [m]
+  double angle = 0;               // sinusoidal: rotation amplitude about axis through pivot [degrees]
+  Vec3d axis{0, 1, 0};            // rotation axis (sinusoidal)
+  Vec3d pivot{};                  // the point the rotation turns about and body gauges report
+  bool pivot_given = false;       // else the centre of the wall's box or mesh bounds
+  double height = 0, depth = 0;   // solitary: the wave's amplitude A and the still depth h [m]
+  std::string csv, csv_path;      // time_series: as written, resolved against the case file
+  int line = 0;
+  [[nodiscard]] bool moves() const { return !law.empty(); }
+};
+
 struct WallSpec {
   std::string name;       // for force gauges
   bool is_mesh = false;   // a triangle surface: an STL file, or an elevation grid (`terrain`)
@@ -73,10 +96,11 @@ struct WallSpec {
   std::vector<Face> open; // box tank: faces left without wall
   std::string mesh;       // as written in the case file
   std::string mesh_path;  // resolved against the case file's folder
+  MotionSpec motion;      // prescribed motion; none by default
   int line = 0;
 };
 
-enum class GaugeType { Height, Pressure, Velocity, Force, Sphere, DemWall };
+enum class GaugeType { Height, Pressure, Velocity, Force, Sphere, DemWall, Body };
 
 struct GaugeSpec {
   std::string name;
@@ -85,7 +109,7 @@ struct GaugeSpec {
   std::string surface = "column"; // height: column (top of the water standing on the bed) or highest (wet point)
   Vec3d at{};                     // pressure / velocity gauges
   std::string component = "z";    // velocity: x|y|z|mag ; force: x|y|z|mag ; sphere: x|y|z|vx|vy|vz|fx|fy|fz|mx|my|mz
-  std::string wall;               // force gauges: name of the wall
+  std::string wall;               // force and body gauges: name of the wall
   int sphere = 0;                 // sphere gauges: index of the sphere (packs in order, spheres in pack order)
   Vec3d about{};                  // dem_wall gauges: moments about this point (absolute)
   int line = 0;

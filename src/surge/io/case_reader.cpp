@@ -2,6 +2,7 @@
 
 #include "surge/core/error.hpp"
 #include "surge/io/case_schema.hpp"
+#include "surge/motion/motion_law.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -404,6 +405,49 @@ FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string&
   return reg;
 }
 
+// The keys a motion law reads besides law, start and pivot (its registry entry).
+std::vector<std::string> law_keys(const motion::LawEntry& e) {
+  std::vector<std::string> k = e.required;
+  k.insert(k.end(), e.optional.begin(), e.optional.end());
+  return k;
+}
+
+// walls[].motion: the law by name, the keys it needs and no others; the law is built once
+// here (a time series' file is read and checked) so that a bad motion fails before a run.
+MotionSpec parse_motion(const Reader& r, const YAML::Node& m, const std::string& path, const Case& c) {
+  r.check_keys(m, path, keys_under("walls[].motion"));
+  MotionSpec s;
+  s.line = m.Mark().line + 1;
+  s.law = r.require<std::string>(m, path, "law");
+  const motion::LawEntry* e = motion::find_law(s.law);
+  if (!e) {
+    std::string known;
+    for (const auto& l : motion::motion_laws()) known += (known.empty() ? "" : ", ") + std::string(l.name);
+    r.fail(m["law"], path + ".law", "unknown motion law '" + s.law + "'; the laws are " + known);
+  }
+  read_fields(r, m, path, motion_fields(), s);
+  const std::vector<std::string> takes = law_keys(*e);
+  for (const auto& kv : m) {
+    const auto k = kv.first.as<std::string>();
+    if (k == "law" || k == "start" || k == "pivot" || std::find(takes.begin(), takes.end(), k) != takes.end()) continue;
+    std::string list = "start, pivot";
+    for (const auto& t : takes) list += ", " + t;
+    r.fail(kv.first, path + "." + k, "does not apply to the law " + s.law + " (it reads " + list + ")");
+  }
+  for (const auto& k : e->required)
+    if (!m[k].IsDefined()) r.fail(m, path + "." + k, "is required by the motion law " + s.law);
+  if (m["pivot"].IsDefined()) {
+    s.pivot = r.as<Vec3d>(m["pivot"], path + ".pivot");
+    s.pivot_given = true;
+  }
+  if (m["csv"].IsDefined()) {
+    s.csv = r.as<std::string>(m["csv"], path + ".csv");
+    s.csv_path = resolve_file(r, m["csv"], path + ".csv", "time series ");
+  }
+  (void)motion::Motion(s, motion::MotionContext{c.g(), r.file(), path});
+  return s;
+}
+
 WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& path, std::size_t i, const Case& c) {
   r.check_keys(w, path, keys_under("walls[]"));
   WallSpec ws;
@@ -433,6 +477,10 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
   }
   for (const auto& other : c.walls)
     if (other.name == ws.name) r.fail(w, path + ".name", "duplicate wall name '" + ws.name + "'");
+  if (w["motion"].IsDefined()) {
+    if (ws.terrain) r.fail(w["motion"], path + ".motion", "a terrain does not move; give the moving part its own wall");
+    ws.motion = parse_motion(r, w["motion"], path + ".motion", c);
+  }
   return ws;
 }
 
@@ -460,13 +508,17 @@ void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c
 void parse_component(const Reader& r, const YAML::Node& g, const std::string& path, GaugeSpec& gs) {
   const std::string key = path + ".component";
   switch (gs.type) {
-  case GaugeType::Sphere: {
+  case GaugeType::Sphere:
+  case GaugeType::Body: {
     gs.component = r.get<std::string>(g, path, "component", "z");
     const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
     if (ok.count(gs.component) == 0)
       r.fail(g["component"], key,
-             "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
-             "mz (fluid moment about the centre)");
+             gs.type == GaugeType::Sphere
+                 ? "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
+                   "mz (fluid moment about the centre)"
+                 : "a body gauge reads x, y, z (pivot), vx, vy, vz (its velocity), fx, fy, fz (the water's force) or "
+                   "mx, my, mz (the water's moment about the pivot)");
     return;
   }
   case GaugeType::DemWall: {
@@ -490,7 +542,7 @@ void parse_component(const Reader& r, const YAML::Node& g, const std::string& pa
 }
 
 // The gauge types as the case file names them, in GaugeType's order (read and written).
-constexpr const char* gauge_type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall"};
+constexpr const char* gauge_type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall", "body"};
 
 GaugeType parse_gauge_type(const Reader& r, const YAML::Node& g, const std::string& path) {
   const auto type = r.require<std::string>(g, path, "type");
@@ -536,6 +588,14 @@ GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& p
   case GaugeType::DemWall:
     gs.wall = r.require<std::string>(g, path, "wall"); // checked once the DEM walls are read
     break;
+  case GaugeType::Body: {
+    gs.wall = r.require<std::string>(g, path, "wall");
+    const auto w = std::find_if(c.walls.begin(), c.walls.end(), [&](const WallSpec& x) { return x.name == gs.wall; });
+    if (w == c.walls.end()) r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
+    if (!w->motion.moves())
+      r.fail(g["wall"], path + ".wall", "the wall '" + gs.wall + "' does not move (a force gauge reads a still wall)");
+    break;
+  }
   }
   parse_component(r, g, path, gs);
   return gs;
@@ -756,6 +816,23 @@ void write_section(YAML::Emitter& e, const char* key, const std::vector<Field<S>
   e << YAML::EndMap;
 }
 
+// A motion with the keys its law reads only (the reader refuses the others).
+void write_motion(YAML::Emitter& e, const MotionSpec& m) {
+  e << YAML::Key << "motion" << YAML::Value << YAML::BeginMap << YAML::Key << "law" << YAML::Value << m.law;
+  std::vector<std::string> keys = law_keys(*motion::find_law(m.law));
+  keys.emplace_back("start");
+  std::vector<Field<MotionSpec>> fields;
+  for (const auto& f : motion_fields())
+    if (std::find(keys.begin(), keys.end(), f.key) != keys.end()) fields.push_back(f);
+  write_fields(e, fields, m);
+  if (m.pivot_given) {
+    e << YAML::Key << "pivot" << YAML::Value;
+    write_vec(e, m.pivot);
+  }
+  if (!m.csv.empty()) e << YAML::Key << "csv" << YAML::Value << m.csv_path;
+  e << YAML::EndMap;
+}
+
 void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
   e << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
   for (const auto& w : walls) {
@@ -770,6 +847,7 @@ void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
       e << YAML::EndSeq;
     }
     write_fields(e, wall_fields(), w);
+    if (w.motion.moves()) write_motion(e, w.motion);
     e << YAML::EndMap;
   }
   e << YAML::EndSeq;
@@ -791,6 +869,7 @@ void write_gauge(YAML::Emitter& e, const GaugeSpec& g) {
     break;
   case GaugeType::Force:
   case GaugeType::DemWall:
+  case GaugeType::Body:
     e << YAML::Key << "wall" << YAML::Value << g.wall;
     break;
   case GaugeType::Sphere:

@@ -1,5 +1,7 @@
 #include "surge/io/case_schema.hpp"
 
+#include "surge/motion/motion_law.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -226,6 +228,28 @@ const std::vector<Field<WallSpec>>& wall_fields() {
   return f;
 }
 
+const std::vector<Field<MotionSpec>>& motion_fields() {
+  using M = MotionSpec;
+  static const std::vector<Field<M>> f{
+      {"start", &M::start, "s", non_negative(), {}, "the wall rests until this time"},
+      {"velocity", &M::velocity, "m/s", {}, {}, "constant_velocity: the velocity; uniform_acceleration: at start"},
+      {"acceleration", &M::acceleration, "m/s^2", {}, {}, "uniform_acceleration: the acceleration"},
+      {"direction", &M::direction, "-", {}, {}, "ln_cosh, capped_acceleration, solitary: the line of motion"},
+      {"s0", &M::s0, "m", non_negative(), {}, "ln_cosh: length scale (terminal speed s0 / t0)"},
+      {"t0", &M::t0, "s", non_negative(), {}, "ln_cosh: time scale"},
+      {"accel", &M::accel, "m/s^2", non_negative(), {}, "capped_acceleration: the acceleration"},
+      {"terminal", &M::terminal, "m/s", non_negative(), {}, "capped_acceleration: the terminal speed"},
+      {"period", &M::period, "s", non_negative(), {}, "sinusoidal: the period"},
+      {"phase", &M::phase, "degrees", {}, {}, "sinusoidal: the phase at start"},
+      {"amplitude", &M::amplitude, "m", {}, {}, "sinusoidal: translation amplitude (a piston)"},
+      {"angle", &M::angle, "degrees", {}, {}, "sinusoidal: rotation amplitude about axis through pivot (a flap)"},
+      {"axis", &M::axis, "-", {}, {}, "sinusoidal: the rotation axis"},
+      {"height", &M::height, "m", non_negative(), {}, "solitary: the wave's height A above still water"},
+      {"depth", &M::depth, "m", non_negative(), {}, "solitary: the still water depth h"},
+  };
+  return f;
+}
+
 const std::vector<Field<GaugeSpec>>& gauge_fields() {
   using G = GaugeSpec;
   static const std::vector<Field<G>> f{
@@ -318,6 +342,25 @@ void hazard_keys(std::vector<KeyDoc>& k) {
   k.push_back({"hazard.run_up[].to", "[x, y]", "required", "m", "in the domain", "where it ends"});
 }
 
+// A wall's prescribed motion (issue 34): the law by name from motion/motion_laws.cpp.
+void motion_keys(std::vector<KeyDoc>& k) {
+  k.push_back({"walls[].motion", "mapping", "", "", "",
+               "a prescribed motion: the wall (its particles, with either wall model) moves by a law of time"});
+  std::string laws, help;
+  for (const auto& e : motion::motion_laws()) {
+    laws += (laws.empty() ? "" : " | ") + std::string(e.name);
+    help += (help.empty() ? "" : "; ") + std::string(e.name) + ": " + e.help + " (needs";
+    for (const auto& r : e.required) help += " " + r;
+    help += ")";
+  }
+  k.push_back({"walls[].motion.law", "choice", "required", "", laws, help});
+  add(k, "walls[].motion.", motion_fields());
+  k.push_back({"walls[].motion.pivot", "[x, y, z]", "the wall's centre", "m", "",
+               "the point rotations turn about and body gauges report"});
+  k.push_back({"walls[].motion.csv", "file", "", "", "t, dx, dy, dz [, rx, ry, rz]",
+               "time_series: the table (relative to the case file; t increasing, at least two rows)"});
+}
+
 std::vector<KeyDoc> build_keys() {
   std::vector<KeyDoc> k;
   const std::string vec = "[x, y, z]";
@@ -349,16 +392,19 @@ std::vector<KeyDoc> build_keys() {
                "a triangle mesh (relative to the case file); normals point to the water"});
   k.push_back({"walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
                "the ground: an elevation grid (GeoTIFF, ESRI ASCII, ...) cropped to the domain, solid below"});
+  motion_keys(k);
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
   k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
-  k.push_back({"gauges[].type", "choice", "required", "", "height | pressure | velocity | force | sphere | dem_wall",
-               "what is measured"});
+  k.push_back({"gauges[].type", "choice", "required", "",
+               "height | pressure | velocity | force | sphere | dem_wall | body", "what is measured"});
   k.push_back({"gauges[].x", "number", "required (height)", "m", "", "height gauge: the vertical line's x"});
   k.push_back({"gauges[].y", "number", "required (height)", "m", "", "height gauge: the vertical line's y"});
   k.push_back({"gauges[].at", vec, "required (pressure, velocity)", "m", "inside the domain", "the probe's point"});
   k.push_back({"gauges[].component", "choice", "by type", "", "x y z mag | x..mz | fx..mz",
-               "velocity and force: x, y, z, mag; sphere: x, y, z, vx..vz, fx..fz, mx..mz; dem_wall: fx..mz"});
-  k.push_back({"gauges[].wall", "text", "required (force, dem_wall)", "", "a wall's name", "the wall measured"});
+               "velocity and force: x, y, z, mag; sphere and body: x, y, z, vx..vz, fx..fz, mx..mz; dem_wall: fx..mz"});
+  k.push_back({"gauges[].wall", "text", "required (force, dem_wall, body)", "", "a wall's name",
+               "the wall measured (body: a moving wall, its pivot's position and velocity, the water's force and "
+               "moment about the pivot)"});
   k.push_back({"gauges[].sphere", "integer", "required (sphere)", "", ">= 0",
                "the sphere (packs in order, spheres in pack order)"});
   add(k, "gauges[].", gauge_fields());

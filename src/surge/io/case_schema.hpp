@@ -52,6 +52,7 @@ const std::vector<Field<DemMaterialSpec>>& material_fields();
 // The optional keys of list items.
 const std::vector<Field<FluidRegion>>& fluid_fields();
 const std::vector<Field<WallSpec>>& wall_fields();
+const std::vector<Field<MotionSpec>>& motion_fields();
 const std::vector<Field<GaugeSpec>>& gauge_fields();
 const std::vector<Field<DemWallSpec>>& dem_wall_fields();
 const std::vector<Field<DemPackSpec>>& pack_fields();

@@ -12,6 +12,7 @@
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/distributed_run.hpp"
+#include "surge/sim/moving_bodies.hpp"
 #include "surge/sim/run_loop.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/wall_leaks.hpp"
@@ -184,6 +185,7 @@ void print_terrain_warnings(const Case& c, const WallSpec& w) {
 int check(const Case& c) {
   if (c.dem.active() && !c.coupled()) return check_dem(c);
   auto init = sph::build_initial_state(c);
+  const MovingBodies bodies(c, init); // refuses a motion that leaves the domain
   std::optional<CoupledParts> cp;
   if (c.coupled()) cp.emplace(c, init);
   const double n_body = cp ? static_cast<double>(cp->coupling->n_body()) : 0.0;
@@ -214,6 +216,16 @@ int check(const Case& c) {
       std::printf("warning     the lake is narrow for dp = %g m: %.0f %% of its surface lies within 2 dp of a shore "
                   "(as in a channel under 8 dp wide); a smaller dp resolves the flow across it\n",
                   c.dp, 100 * narrow);
+  }
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const auto& m = bodies.wall(k);
+    const motion::Pose end = bodies.pose(k, c.time.end);
+    std::printf(
+        "moving      wall '%s' (%u particles): %s from t = %g s, pivot [%g, %g, %g] m, at t = %g s moved by [%.4g, "
+        "%.4g, %.4g] m, speed %.4g m/s\n",
+        c.walls[m.wall].name.c_str(), m.last - m.first, c.walls[m.wall].motion.law.c_str(),
+        c.walls[m.wall].motion.start, m.pivot.x, m.pivot.y, m.pivot.z, c.time.end, end.shift.x, end.shift.y,
+        end.shift.z, norm(end.vel));
   }
   if (cp) {
     std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "
@@ -269,7 +281,7 @@ public:
   // `ck`: the checkpoint of a restart (its particles are moved out). Everything that can
   // fail on input happens before the output folder is touched.
   SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
-      : c_(c), opt_(opt), init_(sph::build_initial_state(c)), cp_(coupled_parts(c, init_)),
+      : c_(c), opt_(opt), init_(sph::build_initial_state(c)), bodies_(c, init_), cp_(coupled_parts(c, init_)),
         solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr), gauges_(c, init_),
         hazard_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
         dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
@@ -287,6 +299,9 @@ public:
       tot_.removed_density = ck->removed_density;
       tot_.non_finite = ck->non_finite;
       dist_.start(std::move(ck->particles), ck->steps); // a checkpoint of any number of processes
+      // The moving walls placed at the checkpoint's time, as the straight run placed them
+      // (their positions the checkpoint's, bit for bit; ghost offsets and faces turned).
+      bodies_.place(solver_, ck->time);
       // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
       // placed again are the checkpoint's, bit for bit).
       if (cp_) cp_->coupling->place_bodies(solver_, *cp_->dem);
@@ -298,6 +313,7 @@ public:
         walls_pvd_.add(0.0, "particles/walls_0000.vtp");
       }
       dist_.start(init_.particles);
+      bodies_.place(solver_, 0.0);                               // their velocities at t = 0
       if (cp_) cp_->coupling->reduce_forces(solver_, *cp_->dem); // the fluid force at t = 0, for the gauges
     }
     // The initial particles' host copy (37 B per particle or more) is not read again.
@@ -310,6 +326,7 @@ public:
     dist_.stepped();
     if (cp_) cp_->coupling->after_fluid_step(solver_, *cp_->dem, s.dt);
     t += s.dt;
+    bodies_.place(solver_, t); // the run loop's new time, the same double
     dist_.combine(s, stop, checkpoint_due);
     for (Totals* x : {&tot_, &since_output_}) {
       x->removed_domain += s.removed_domain;
@@ -348,6 +365,7 @@ public:
   std::vector<double> sample(double t) override {
     dist_.sync();
     hazard_.sample(t, solver_, dist_.distribution());
+    if (bodies_.any()) gauges_.set_bodies(bodies_.states(t));
     std::vector<dem::Sphere> sp;
     std::vector<Vec3> ff, fm;
     if (cp_) {
@@ -380,7 +398,10 @@ public:
         io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
         spheres_pvd_->add(t, std::string("particles/") + name);
       }
+      if (bodies_.any()) write_walls(frame, t);
       if (hazard_.enabled()) write_hazard();
+      for (std::size_t k = 0; k < bodies_.size(); ++k)
+        leaks_.set_pose(bodies_.wall(k).wall, bodies_.wall(k).pivot, bodies_.pose(k, t));
       const LeakCount in_walls = leaks_.count(host_, init_.origin);
       tot_.leaks.add(in_walls, t);
       if (in_walls.count > 0 && !quiet)
@@ -418,7 +439,13 @@ public:
       entries.emplace_back(frame_times[static_cast<std::size_t>(k)], name);
     }
     fluid_pvd_.restore(entries);
-    walls_pvd_.restore({{0.0, "particles/walls_0000.vtp"}});
+    if (bodies_.any()) { // the walls of every frame
+      auto walls = entries;
+      for (auto& e : walls) e.second.replace(e.second.find("fluid_"), 6, "walls_");
+      walls_pvd_.restore(walls);
+    } else {
+      walls_pvd_.restore({{0.0, "particles/walls_0000.vtp"}});
+    }
     if (cp_) {
       for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
       spheres_pvd_->restore(entries);
@@ -453,6 +480,16 @@ private:
     std::optional<CoupledParts> cp;
     if (c.coupled()) cp.emplace(c, init);
     return cp;
+  }
+
+  // With moving walls every frame has its walls (walls_NNNN.vtp; frame 0 is written at the
+  // start, before any output, from the initial state).
+  void write_walls(int frame, double t) {
+    if (frame == 0) return;
+    char name[64];
+    std::snprintf(name, sizeof name, "walls_%04d.vtp", frame);
+    io::write_particles_vtp((out_ / "particles" / name).string(), host_, init_.origin, {Kind::Wall});
+    walls_pvd_.add(t, std::string("particles/") + name);
   }
 
   // maps/: the hazard maps as GeoTIFFs in the terrain's coordinate system, all of them and
@@ -501,6 +538,7 @@ private:
   const Case& c_;
   const RunOptions& opt_;
   sph::InitialState init_;
+  MovingBodies bodies_; // walls with a motion
   std::optional<CoupledParts> cp_;
   const particles::HostParticles none_; // a distributed run's solver starts empty: each process uploads its slab
   sph::WcsphSolver solver_;

@@ -31,7 +31,9 @@ LeakCount WallLeaks::count(const particles::HostParticles& host, const Vec3d& or
     if (host.kind[i] != static_cast<std::uint8_t>(Kind::Fluid)) continue;
     const Vec3d x = Vec3d(host.pos[i]) + origin;
     for (std::size_t w = 0; w < walls_.size(); ++w) {
-      if (!reach_[w].contains(x) || !geometry::behind_wall(walls_[w], meshes_[w].get(), x, band_)) continue;
+      const bool moved = w < moved_.size() && moved_[w].moved;
+      const Vec3d xw = moved ? moved_[w].pose.unplace(moved_[w].pivot, x) : x; // where the wall was placed
+      if (!reach_[w].contains(xw) || !geometry::behind_wall(walls_[w], meshes_[w].get(), xw, band_)) continue;
       if (n.count++ == 0) n.wall = walls_[w].name;
       for (int k = 0; k < 3; ++k) {
         n.lo[k] = std::min(n.lo[k], x[k]);

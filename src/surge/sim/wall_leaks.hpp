@@ -3,6 +3,7 @@
 #pragma once
 #include "surge/core/case.hpp"
 #include "surge/geometry/stl_mesh.hpp"
+#include "surge/motion/pose.hpp"
 #include "surge/particles/particle_store.hpp"
 
 #include <memory>
@@ -22,8 +23,20 @@ public:
   explicit WallLeaks(const Case& c);
   // Fluid particles of `host` (positions relative to `origin`) behind a wall face.
   [[nodiscard]] LeakCount count(const particles::HostParticles& host, const Vec3d& origin) const;
+  // Wall w has moved by `pose` about `pivot` (absolute, as placed): it is tested where it
+  // is now (each point taken back to where the wall was placed).
+  void set_pose(std::size_t w, const Vec3d& pivot, const motion::Pose& pose) {
+    moved_.resize(walls_.size());
+    moved_[w] = {true, pivot, pose};
+  }
 
 private:
+  struct Moved {
+    bool moved = false;
+    Vec3d pivot{};
+    motion::Pose pose;
+  };
+  std::vector<Moved> moved_;
   std::vector<WallSpec> walls_;
   std::vector<std::unique_ptr<geometry::Mesh>> meshes_;
   std::vector<Box> reach_; // each wall's bounding box with its layers: only fluid there is tested

@@ -19,10 +19,12 @@ double crossing(double z, double dz, double f0, double f1) { return z + dz * (f0
 namespace detail {
 // out[id - id0] = a of each owned particle with id in [id0, id1) (free function: nvcc's
 // extended lambdas may not live in private member functions).
-void wall_accelerations(const particles::ParticleView& p, std::uint32_t id0, std::uint32_t id1, Vec3* out) {
+void wall_accelerations(const particles::ParticleView& p, std::uint32_t id0, std::uint32_t id1, Vec3* out, Vec3* pos) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
-        if (p.id[i] >= id0 && p.id[i] < id1 && p.owned(i)) out[p.id[i] - id0] = p.acc[i];
+        if (p.id[i] < id0 || p.id[i] >= id1 || !p.owned(i)) return;
+        out[p.id[i] - id0] = p.acc[i];
+        if (pos) pos[p.id[i] - id0] = p.pos[i];
       });
 }
 // out[k] = the kernel sums at pts[k] (a free function for nvcc's extended lambdas).
@@ -37,6 +39,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
   dz_ = c.dp / 4;
   const Vec3d o = init.origin;
   origin_z_ = o.z;
+  origin_ = o;
   std::vector<std::unique_ptr<geometry::Mesh>> meshes;
   for (const auto& w : c.walls)
     meshes.push_back(w.is_mesh && needs_bed(c)
@@ -49,22 +52,26 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
       // Sample points up the vertical line, from the bed (the highest upward-facing wall
       // surface on the line, inside the domain) or, with no wall below, the domain bottom.
       double z0 = c.domain.min.z;
-      for (std::size_t w = 0; w < c.walls.size(); ++w)
+      // A moving wall (a gate lifted from the bed) is no bed.
+      for (std::size_t w = 0; w < c.walls.size(); ++w) {
+        if (c.walls[w].motion.moves()) continue;
         if (const auto bed = geometry::bed_below(c.walls[w], meshes[w].get(), g.x, g.y);
             bed && *bed > z0 && *bed < c.domain.max.z)
           z0 = *bed;
+      }
       const int n = static_cast<int>(std::ceil((c.domain.max.z - z0) / dz_)) + 1;
       for (int k = 0; k < n; ++k) points_host_.push_back(Vec3(Vec3d{g.x, g.y, z0 + k * dz_} - o));
       pr.n_samples = n;
     } else if (g.type == GaugeType::Pressure || g.type == GaugeType::Velocity) {
       points_host_.push_back(Vec3(g.at - o));
       pr.n_samples = 1;
-    } else if (g.type == GaugeType::Force) {
+    } else if (g.type == GaugeType::Force || g.type == GaugeType::Body) {
       for (std::size_t w = 0; w < c.walls.size(); ++w)
         if (c.walls[w].name == g.wall) {
           pr.id0 = init.wall_ids[w].first;
           pr.id1 = init.wall_ids[w].second;
         }
+      if (g.type == GaugeType::Body) pr.body = init.body_of(pr.id0);
     }
     probes_.push_back(pr);
   }
@@ -141,8 +148,10 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
       }
     } else if (spec.type == GaugeType::Sphere || spec.type == GaugeType::DemWall) {
       v = sphere_value ? sphere_value(spec) : 0.0;
+    } else if (spec.type == GaugeType::Body) {
+      v = body_value(solver, pr, dist);
     } else {
-      const Vec3d fd = wall_force(solver, pr, dist);
+      const Vec3d fd = wall_load(solver, pr, dist).force;
       v = spec.component == "x" ? fd.x : spec.component == "y" ? fd.y : spec.component == "z" ? fd.z : norm(fd);
     }
     values.push_back(v);
@@ -150,19 +159,45 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
   return values;
 }
 
-// Sum of m a over the wall's particles, in id order and in double: the same value whatever
-// order the particles are stored in and however they are distributed.
-Vec3d Gauges::wall_force(WcsphSolver& solver, const Probe& pr, const Distribution& dist) {
+// Sum of m a over the wall's particles (and of (x - about) x m a), in id order and in
+// double: the same value whatever order the particles are stored in and however they are
+// distributed.
+Gauges::Load Gauges::wall_load(WcsphSolver& solver, const Probe& pr, const Distribution& dist, const Vec3* about) {
   const std::uint32_t id0 = pr.id0, id1 = pr.id1;
   wall_acc_.resize(id1 - id0);
   par::fill(wall_acc_, Vec3{});
-  detail::wall_accelerations(solver.view(), id0, id1, wall_acc_.data());
-  std::vector<Vec3> acc;
+  if (about) {
+    wall_pos_.resize(id1 - id0);
+    par::fill(wall_pos_, Vec3{});
+  }
+  detail::wall_accelerations(solver.view(), id0, id1, wall_acc_.data(), about ? wall_pos_.data() : nullptr);
+  std::vector<Vec3> acc, pos;
   par::download(acc, wall_acc_, wall_acc_.size());
   dist.sum(reinterpret_cast<Real*>(acc.data()), 3 * acc.size());
-  Vec3d f{};
-  for (const Vec3& a : acc) f += Vec3d(a);
-  return f * static_cast<double>(solver.params().mass);
+  if (about) {
+    par::download(pos, wall_pos_, wall_pos_.size());
+    dist.sum(reinterpret_cast<Real*>(pos.data()), 3 * pos.size());
+  }
+  // Sums of a (and of arm x a), then times the mass: one mass for every particle.
+  Load l;
+  for (std::size_t k = 0; k < acc.size(); ++k) {
+    l.force += Vec3d(acc[k]);
+    if (about) l.moment += cross(Vec3d(pos[k]) - Vec3d(*about), Vec3d(acc[k]));
+  }
+  const auto m = static_cast<double>(solver.params().mass);
+  return {l.force * m, l.moment * m};
+}
+
+// A body gauge: its pivot's position (absolute) and velocity, the water's force on it and
+// moment about the pivot.
+double Gauges::body_value(WcsphSolver& solver, const Probe& pr, const Distribution& dist) {
+  const RigidState s = bodies_.at(static_cast<std::size_t>(pr.body));
+  const std::string& c = pr.spec.component;
+  const int axis = c.back() - 'x';
+  if (c.size() == 1) return static_cast<double>(s.pos[axis]) + origin_[axis];
+  if (c[0] == 'v') return s.vel[axis];
+  const Load l = wall_load(solver, pr, dist, &s.pos);
+  return c[0] == 'f' ? l.force[axis] : l.moment[axis];
 }
 
 // What a wave gauge reads: the top of the water standing on the bed. The samples start at

@@ -61,20 +61,32 @@ public:
     double water_top = 0;
   };
   std::vector<Column> columns(WcsphSolver& solver, const Distribution& dist = {});
+  // The moving walls' states (InitialState::moving order, local) that body gauges read.
+  void set_bodies(const std::vector<RigidState>& states) { bodies_ = states; }
 
 private:
   struct Probe {
     GaugeSpec spec;
     int first_sample = 0, n_samples = 0;
     std::uint32_t id0 = 0, id1 = 0;
+    int body = -1; // body gauges: index into InitialState::moving
   };
+  std::vector<RigidState> bodies_;
+  Vec3d origin_{};
   std::vector<Probe> probes_;
   std::vector<std::string> names_;
   std::vector<Vec3> points_host_;
   par::Buffer<Vec3> points_;
   par::Buffer<PointSums> sums_;
   par::Buffer<Vec3> wall_acc_; // a force gauge's wall particles' accelerations, by id - first id
-  [[nodiscard]] Vec3d wall_force(WcsphSolver& solver, const Probe& pr, const Distribution& dist);
+  // The water's force on a wall's particles and, with `about` (local), its moment about it.
+  struct Load {
+    Vec3d force{}, moment{};
+  };
+  [[nodiscard]] Load wall_load(WcsphSolver& solver, const Probe& pr, const Distribution& dist,
+                               const Vec3* about = nullptr);
+  [[nodiscard]] double body_value(WcsphSolver& solver, const Probe& pr, const Distribution& dist);
+  par::Buffer<Vec3> wall_pos_; // a body gauge's wall particles' positions, by id - first id
   double dz_ = 0;
   double origin_z_ = 0;
   // The kernel sums at every sample point, combined across processes.

@@ -13,6 +13,14 @@
 
 namespace surge::sph {
 
+// A wall that moves (WallSpec::motion): its particle ids [first, last) and its pivot as
+// placed (absolute), the point its body's rigid state follows.
+struct MovingWall {
+  std::uint32_t first = 0, last = 0;
+  std::size_t wall = 0; // index into Case::walls
+  Vec3d pivot{};
+};
+
 // The particles a case starts with, in local coordinates (absolute - origin).
 struct InitialState {
   particles::HostParticles particles;
@@ -20,6 +28,13 @@ struct InitialState {
   std::size_t n_fluid = 0, n_wall = 0;
   // Wall particle ids of each case wall: [first, last) (ids are assigned in order).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> wall_ids;
+  std::vector<MovingWall> moving; // the walls with a motion, in case order
+  // The body (index into `moving`) of a wall particle by id, or -1 for a still wall.
+  [[nodiscard]] int body_of(std::uint32_t id) const {
+    for (std::size_t k = 0; k < moving.size(); ++k)
+      if (id >= moving[k].first && id < moving[k].last) return static_cast<int>(k);
+    return -1;
+  }
   std::size_t fluid_dropped_by_walls = 0;
   double fluid_volume_asked = 0; // sum of the fluid boxes' volumes (n_fluid dp^3 is what was placed)
   long reservoir_columns = 0;    // lattice columns with reservoir water: its surface area / dp^2

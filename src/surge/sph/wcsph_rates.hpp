@@ -142,18 +142,20 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
                                                   Real keep_off, FirstContact& contact) {
   const std::uint32_t b = p.id[j] - gh.first_id;
   const WallReach reach = wall_reach(gh, b);
-  for_each_held_face(p.pos[j], rij, reach, wall_offset(gh, b), gh.extra_face, [&](const WallPlane& w, int what) {
-    contact.consider(w, wall_choice(j, what), xi, vi, keep_off);
-  });
+  const Vec3 v = vi - p.vel[j]; // relative to a moving wall (a still one: vi itself)
+  for_each_held_face(p.pos[j], rij, reach, wall_offset(gh, b), gh.extra_face,
+                     [&](const WallPlane& w, int what) { contact.consider(w, wall_choice(j, what), xi, v, keep_off); });
   if (r > 0)
-    contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), wall_choice(j, sphere_of_wall), xi, vi,
+    contact.consider(sphere_plane(p.pos[j], rij, r, reach.sphere, keep_off), wall_choice(j, sphere_of_wall), xi, v,
                      keep_off);
 }
 
 // The plane consider_wall offered as `choice` to the fluid particle at xi, rebuilt from
-// the same inputs: the update calls it at the positions the rates pass saw (wall particles
-// do not move, and the particle's own position is read before it moves), so it is the
-// same plane, bit for bit. No plane (normal 0) for no_wall.
+// the same inputs: the update calls it at the positions the rates pass saw (moving walls
+// are placed after the update, and the particle's own position is read before it moves),
+// so it is the same plane, bit for bit, with the wall particle's normal speed (vn: the
+// update holds water in front of where the plane will be, WallPlane::after). No plane
+// (normal 0) for no_wall.
 [[nodiscard]] SURGE_HD inline WallPlane held_plane(const WallHoldView& gh, const particles::ParticleView& p,
                                                    WallChoice choice, const Vec3& xi, Real keep_off) {
   if (choice == no_wall) return {};
@@ -162,10 +164,14 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const Vec3 rij = xi - xb;
   const std::uint32_t b = p.id[j] - gh.first_id;
   const WallReach reach = wall_reach(gh, b);
-  if (what == sphere_of_wall) return sphere_plane(xb, rij, std::sqrt(dot(rij, rij)), reach.sphere, keep_off);
   WallPlane w;
-  Real d;
-  face_below(xb, face_offset(reach, wall_offset(gh, b), gh.extra_face, what), rij, reach.patch, w, d);
+  if (what == sphere_of_wall) {
+    w = sphere_plane(xb, rij, std::sqrt(dot(rij, rij)), reach.sphere, keep_off);
+  } else {
+    Real d;
+    face_below(xb, face_offset(reach, wall_offset(gh, b), gh.extra_face, what), rij, reach.patch, w, d);
+  }
+  w.vn = dot(w.n, p.vel[j]) + Real(0); // + 0: a still wall's -0 made +0 (the plane offered has +0)
   return w;
 }
 

@@ -93,7 +93,7 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
           Vec3 x = x_now + (v_now * dt + a * (dt * dt / 2)); // the association of the plain update
           Vec3 v = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
           Vec3 v_prev = v_now;
-          if (faces) keep_off_face(held_plane(gh, p, faces[i], x_now, dmin), dmin, x, v, &v_prev);
+          if (faces) keep_off_face(held_plane(gh, p, faces[i], x_now, dmin).after(dt), dmin, x, v, &v_prev);
           p.pos[i] = x;
           p.vel[i] = v;
           p.vel_prev[i] = v_prev;
@@ -124,7 +124,7 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
           p.vel_prev[i] = v0;
           Vec3 x = x0 + v0 * half;
           Vec3 v = v0 + p.acc[i] * half;
-          if (faces) keep_off_face(face, dmin, x, v);
+          if (faces) keep_off_face(face.after(half), dmin, x, v);
           p.pos[i] = x;
           p.vel[i] = v;
         } else {
@@ -146,7 +146,8 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, co
           const Vec3 v0 = p.vel_prev[i];
           Vec3 v1 = v0 + p.acc[i] * dt;
           Vec3 x = p.pos_prev[i] + (v0 + v1) * half;
-          if (faces) keep_off_face(held_plane(gh, p, faces[i], p.pos[i], dmin), dmin, x, v1); // rates were at pos
+          // The rates were at pos (walls where they stood at the step's start).
+          if (faces) keep_off_face(held_plane(gh, p, faces[i], p.pos[i], dmin).after(dt), dmin, x, v1);
           p.vel[i] = v1;
           p.pos[i] = x;
         } else {
@@ -201,6 +202,7 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unlo
     : cfg_(cfg), boundary_(cfg.boundary->make(init, cfg.prm)), first_boundary_id_(init.first_boundary_id),
       dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
   if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
+  if (!init.moving.empty()) moving_ = MovingWalls(init, boundary_->ghost_offsets() != nullptr);
   // The grid covers that region and every particle.
   Vec3 lo = dom_lo_, hi = dom_hi_;
   for (const auto& p : init.particles.pos)
@@ -253,6 +255,13 @@ void WcsphSolver::rates() {
   WallChoice* choices = hold_.choices(p.n);
   const auto t = par::timed(par::Phase::Rates);
   detail::compute_rates(cfg_.prm, hold_.view(), g, p, choices);
+}
+
+void WcsphSolver::move_walls(const std::vector<RigidState>& states) {
+  if (!moving_.any()) return;
+  moving_.place(store_.view(), states, boundary_->ghost_offsets(), first_boundary_id_);
+  hold_.turn(states);
+  fresh_ = false;
 }
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {

@@ -7,6 +7,7 @@
 #include "surge/sph/boundary/boundary_model.hpp"
 #include "surge/sph/boundary/wall_hold.hpp"
 #include "surge/sph/initial_state.hpp"
+#include "surge/sph/moving_walls.hpp"
 #include "surge/sph/solver_config.hpp"
 #include "surge/sph/wcsph_rates.hpp"
 
@@ -62,7 +63,7 @@ public:
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
-    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes();
+    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes();
   }
   [[nodiscard]] neighbour::GridView grid_view() {
     const particles::ParticleView v = store_.view();
@@ -76,6 +77,11 @@ public:
   void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
   void refresh();
+  // Places the moving walls' particles from their bodies' states (states[k] for
+  // InitialState::moving[k]), turning their ghost offsets and no-penetration faces: the run
+  // loop calls it after each step with the states at the new time, and at the start.
+  void move_walls(const std::vector<RigidState>& states);
+  [[nodiscard]] bool has_moving_walls() const { return moving_.any(); }
   // Particles were changed from outside (body particles moved, a halo exchange): rates must be recomputed.
   void invalidate() { fresh_ = false; }
 
@@ -91,6 +97,7 @@ private:
   SolverConfig cfg_;
   std::unique_ptr<BoundaryModel> boundary_; // sph.boundary
   WallHold hold_;                           // sph.no_penetration
+  MovingWalls moving_;                      // walls with a motion
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;

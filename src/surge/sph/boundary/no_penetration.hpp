@@ -59,10 +59,16 @@ struct WallHoldView {
 
 // A wall face near a fluid particle: the plane n.x = c, n pointing into the water. The
 // default (n = 0) is no face: every point is far in front of it.
+// A moving wall's plane moves along n at vn (the wall particle's velocity along n): the
+// update holds water in front of where it will be and removes only the motion towards it
+// relative to the wall (vn = 0 for a still wall: the plain condition, the same bits).
 struct WallPlane {
   Vec3 n{};
   Real c = Real(-1e30);
+  Real vn = 0;
   [[nodiscard]] SURGE_HD Real distance(const Vec3& x) const { return dot(n, x) - c; }
+  // The plane dt later.
+  [[nodiscard]] SURGE_HD WallPlane after(Real dt) const { return vn == 0 ? *this : WallPlane{n, c + vn * dt, vn}; }
 };
 
 // The face that wall particle b (ghost offset o) mirrors through, seen from the fluid
@@ -160,16 +166,16 @@ struct FirstContact {
 };
 
 // Keeps the particle at x (moving at v) at least dmin in front of face w: moves it back
-// to dmin and removes the normal velocity towards the face (also from v_prev, the
-// leap-frog's other velocity, when given). Returns true if it acted.
+// to dmin and removes the normal velocity towards the face, relative to the face's own
+// (also from v_prev, the leap-frog's other velocity, when given). Returns true if it acted.
 SURGE_HD inline bool keep_off_face(const WallPlane& w, Real dmin, Vec3& x, Vec3& v, Vec3* v_prev = nullptr) {
   const Real d = w.distance(x);
   if (!(d < dmin)) return false;
   x += w.n * (dmin - d);
-  const Real vn = dot(v, w.n);
+  const Real vn = dot(v, w.n) - w.vn; // towards the face, relative to it
   if (vn < 0) v -= w.n * vn;
   if (v_prev) {
-    const Real pn = dot(*v_prev, w.n);
+    const Real pn = dot(*v_prev, w.n) - w.vn;
     if (pn < 0) *v_prev -= w.n * pn;
   }
   return true;

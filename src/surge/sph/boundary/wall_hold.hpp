@@ -3,6 +3,7 @@
 // offsets, and reach) and, from each rates pass, which plane every fluid particle would
 // reach first, which the update keeps it dp/4 in front of.
 #pragma once
+#include "surge/core/rigid_state.hpp"
 #include "surge/par/parallel.hpp"
 #include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/initial_state.hpp"
@@ -15,6 +16,10 @@ public:
   // On: `shared`, the wall model's ghost offsets if it keeps them (wall particles first),
   // else null and the wall particles' own are kept here, in their rows.
   WallHold(const InitialState& init, const Vec3* shared);
+  // Turns the faces of moving walls with their bodies (states[k] for InitialState::moving[k]):
+  // the rows' offsets (unless the wall model keeps them) and the extra faces. Rows are never
+  // shared between bodies, so each turns with its own.
+  void turn(const std::vector<RigidState>& states);
   [[nodiscard]] bool on() const { return on_; }
   // What the rates kernel reads (hold false when off); built on each call, so that it
   // never outlives a buffer.
@@ -36,6 +41,11 @@ private:
   par::Buffer<WallRow> rows_;       // the distinct (offset, reach) of the walls
   par::Buffer<Vec3> extra_faces_;   // 12 B per extra face of a solid box's or mesh's edge particle
   par::Buffer<WallChoice> choices_; // 4 B per particle
+  // Moving walls: each row's and extra face's body (-1: still) and their offsets as placed.
+  std::vector<int> row_body_, extra_body_;
+  std::vector<WallRow> rows0_;
+  std::vector<Vec3> extra0_;
+  bool turned_ = false; // some body has turned (the buffers differ from rows0_, extra0_)
 };
 
 } // namespace surge::sph
