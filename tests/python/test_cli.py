@@ -147,6 +147,16 @@ with open(os.path.join(out_a, "gauges.csv")) as x, open(os.path.join(out_b, "gau
     check(x.read() == y.read(), "gauges.csv identical after restart")
 r = run(["restart", os.path.join(WORK, "out_bad_typo")])
 check(r.returncode == 2, "restart of a folder without a run exits 2")
+# --- issue 34's bad input: --out naming a file, a folder as the case, a Courant number above 1
+good = write("good_for_out.yaml", GOOD)
+not_a_folder = write("not_a_folder.txt", "keep me\n")
+r = run(["run", good, "--out", not_a_folder, "--quiet"])
+check(r.returncode == 2 and "--out" in r.stderr and "not a folder" in r.stderr and
+      open(not_a_folder).read() == "keep me\n", f"--out naming a file exits 2 and leaves it ({r.stderr.strip()})")
+r = run(["check", WORK])
+check(r.returncode == 2 and "is a folder" in r.stderr, f"a folder as the case file exits 2 ({r.stderr.strip()})")
+r = run(["check", good, "--set", "sph.cfl=5"])
+check(r.returncode == 0 and "sph.cfl = 5 is above 1" in r.stdout, f"surge check warns of sph.cfl = 5 ({r.stdout[-200:]})")
 
 # --- a killed run loses at most time.checkpoint_every_wall of work: the run below writes
 # a checkpoint every 0.2 s of wall time between its outputs (0.05 s apart in simulated

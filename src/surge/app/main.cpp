@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <unistd.h>
@@ -109,6 +110,8 @@ int case_command(const std::string& cmd, const CaseCommand& a, bool root) {
     std::signal(SIGTERM, on_signal);
     surge::sim::RunOptions opt;
     opt.out_dir = a.out_dir.empty() ? "out/" + c.name : a.out_dir;
+    if (std::error_code ec; std::filesystem::exists(opt.out_dir, ec) && !std::filesystem::is_directory(opt.out_dir, ec))
+      throw surge::InputError(opt.out_dir, 0, "--out", "exists and is not a folder; name a folder for the output");
     opt.stop = &g_stop;
     opt.progress_tty = isatty(STDERR_FILENO) != 0;
     opt.quiet = a.quiet || !root;

@@ -774,6 +774,13 @@ Case read_case_text(const std::string& text, const std::string& filename, const 
 }
 
 Case read_case(const std::string& path, const Overrides& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(
+        path, 0, "",
+        "is a folder, not a case file (give the case's .yaml file; to continue a run in this folder: surge "
+        "restart " +
+            path + ")");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open the case file");
   std::stringstream ss;

@@ -114,6 +114,12 @@ double first_dt(const Case& c) {
   return c.sph.cfl * std::min(std::sqrt(h / c.g()), h / c0);
 }
 
+// A Courant number above 1: the explicit step is unstable (surge check and run say so).
+std::string cfl_warning(const Case& c) {
+  if (c.sph.cfl <= 1) return "";
+  return "sph.cfl = " + fmt(c.sph.cfl) + " is above 1: the explicit time step is unstable there (0.2 is the default)";
+}
+
 // surge check's warnings (resolution, kernel, Mach number, the paper's guidance for
 // spheres); returns how many were printed.
 int check_warnings(const Case& c, const sph::InitialState& init, const CoupledParts* cp, double water_share) {
@@ -149,6 +155,7 @@ int check_warnings(const Case& c, const sph::InitialState& init, const CoupledPa
            "and drag (gap effect)");
   }
   if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
+  if (const std::string w = cfl_warning(c); !w.empty()) warn(w);
   return warnings;
 }
 
@@ -560,6 +567,8 @@ private:
 int run(const Case& c, const RunOptions& opt) {
   if (c.dem.active() && !c.coupled()) return run_dem(c, opt);
   const auto wall0 = Clock::now();
+  if (const std::string w = cfl_warning(c); !w.empty() && !opt.quiet && DistributedRun::root())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::optional<io::Checkpoint> ck;
   if (opt.restart) ck = io::read_checkpoint((std::filesystem::path(opt.out_dir) / "checkpoint.bin").string());
   SphStepper s(c, opt, ck ? &*ck : nullptr);
