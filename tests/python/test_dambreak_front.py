@@ -62,4 +62,8 @@ for Te, Ze in exp:
     print(f"T = {Te:5.3f}  Z_exp = {Ze:5.3f}  Z_sph = {Zs:5.3f}  error {100 * err:5.1f} %")
 print(f"largest relative front error for T <= 1.6: {100 * worst_early:.1f} % (tolerance 10 %)")
 print(f"largest relative front error before the far wall: {100 * worst:.1f} % (tolerance 25 %; the issue's 10 % is not met)")
+if gate:
+    # With the gate the issue's bound holds to the far wall (7.2 % at 4fe77e4 + issue 34; without it 20.3 %).
+    print(f"with the gate: {100 * worst:.1f} % before the far wall (tolerance 10 %)")
+    sys.exit(0 if worst < 0.10 else 1)
 sys.exit(0 if worst_early < 0.10 and worst < 0.25 else 1)
