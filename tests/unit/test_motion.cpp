@@ -188,3 +188,120 @@ TEST(MotionCase, ReadsALawAndRefusesBadOnesNamingTheKey) {
                          "gauges: [{name: b, type: body, wall: gate, component: vz}]\n"),
             "");
 }
+
+// --- free bodies (motion/free_body.hpp, geometry/mass_properties.hpp)
+#include "surge/geometry/mass_properties.hpp"
+#include "surge/motion/free_body.hpp"
+
+namespace {
+motion::Matrix3 diag(double a, double b, double c) { return {{{a, 0, 0}, {0, b, 0}, {0, 0, c}}}; }
+
+// A slider on a dry incline at `deg` degrees, released from rest: its speed after 1 s.
+double incline_speed(double deg, double mu_s, double mu_k) {
+  const double th = deg * M_PI / 180;
+  BodySpec b;
+  b.free = true;
+  b.constraint = "line";
+  b.direction = {std::cos(th), 0, -std::sin(th)};
+  b.mu_static = mu_s;
+  b.mu_kinetic = mu_k;
+  motion::FreeBody body(b, 2.0, {0, 0, 1}, diag(1, 1, 1), {0, 0, -9.81});
+  for (int k = 0; k < 1000; ++k) body.advance({}, {}, 1e-3);
+  return dot(body.pose().vel, b.direction);
+}
+} // namespace
+
+// Coulomb friction on a rail: a block sticks below tan(theta) = mu_s and slides above with
+// a = g (sin(theta) - mu_k cos(theta)).
+TEST(FreeBody, SliderOnADryInclineSticksOrSlidesAsCoulombSays) {
+  const double mu_s = 0.5, mu_k = 0.4; // tan(26.57 deg) = 0.5
+  EXPECT_EQ(incline_speed(25, mu_s, mu_k), 0);
+  EXPECT_EQ(incline_speed(26.5, mu_s, mu_k), 0);
+  for (double deg : {27.0, 35.0, 45.0}) {
+    const double th = deg * M_PI / 180, a = 9.81 * (std::sin(th) - mu_k * std::cos(th));
+    EXPECT_NEAR(incline_speed(deg, mu_s, mu_k), a * 1.0, 0.01 * a * 1.0) << deg << " degrees";
+  }
+  EXPECT_NEAR(incline_speed(35, 0, 0), 9.81 * std::sin(35 * M_PI / 180), 1e-9); // frictionless
+}
+
+// A slider stops where friction has taken its speed and stays (it does not run backwards).
+TEST(FreeBody, ASliderThatFrictionStopsStaysStopped) {
+  BodySpec b;
+  b.free = true;
+  b.constraint = "line";
+  b.direction = {1, 0, 0};
+  b.mu_static = 0.6;
+  b.mu_kinetic = 0.5;
+  b.velocity = {1, 0, 0}; // on a level rail: decelerates at mu_k g, stops after 1 / (0.5 g) s
+  motion::FreeBody body(b, 1.0, {}, diag(1, 1, 1), {0, 0, -9.81});
+  for (int k = 0; k < 400; ++k) body.advance({}, {}, 1e-3);
+  EXPECT_EQ(body.pose().vel.x, 0);
+  const double x = body.pose().shift.x;
+  EXPECT_NEAR(x, 1 / (2 * 0.5 * 9.81), 1e-3);
+  for (int k = 0; k < 400; ++k) body.advance({}, {}, 1e-3);
+  EXPECT_EQ(body.pose().shift.x, x);
+}
+
+// 6 DOF: a constant moment about a principal axis spins it up as M t / I; without a moment
+// an asymmetric body tumbling keeps its angular momentum and kinetic energy; a force gives
+// F / m + g.
+TEST(FreeBody, SixDegreesOfFreedomFollowEulersEquations) {
+  BodySpec b;
+  b.free = true;
+  motion::FreeBody spin(b, 3.0, {}, diag(0.1, 0.2, 0.3), {0, 0, 0});
+  for (int k = 0; k < 100; ++k) spin.advance({0, 0, 0}, {0, 0, 0.6}, 1e-3);
+  EXPECT_NEAR(spin.pose().omega.z, 0.6 * 0.1 / 0.3, 1e-12);
+  EXPECT_NEAR(spin.pose().omega.x, 0, 1e-12);
+  motion::FreeBody tumble(b, 3.0, {}, diag(0.1, 0.2, 0.3), {0, 0, -9.81});
+  tumble.advance({0, 0, 29.43}, {0.02, 0.05, 0.01}, 1.0); // an angular impulse, its weight held up, then free
+  const Vec3d l0 = tumble.angular_momentum();
+  auto energy = [&] {
+    const Vec3d w = tumble.pose().omega;
+    return 0.5 * dot(w, l0);
+  };
+  const double e0 = energy();
+  for (int k = 0; k < 2000; ++k) tumble.advance({0, 0, 29.43}, {}, 1e-3); // weight held up: no net force
+  EXPECT_EQ(tumble.angular_momentum().x, l0.x);
+  EXPECT_NEAR(energy(), e0, 2e-3 * e0); // first-order rotation update: small drift
+  EXPECT_NEAR(tumble.pose().vel.z, 0, 1e-12);
+  const motion::Quat q = tumble.pose().q;
+  EXPECT_NEAR(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z, 1, 1e-12);
+}
+
+// A closed mesh of a box gives the box's volume, centroid and inertia, either winding.
+TEST(MassProperties, AClosedMeshOfABoxIsTheBox) {
+  const Box box{{0.1, 0.2, 0.3}, {0.5, 0.4, 0.9}};
+  const geometry::MassProperties ref = geometry::box_mass_properties(box);
+  EXPECT_NEAR(ref.volume, 0.4 * 0.2 * 0.6, 1e-15);
+  geometry::Mesh m;
+  const Vec3d c[8] = {{0.1, 0.2, 0.3}, {0.5, 0.2, 0.3}, {0.5, 0.4, 0.3}, {0.1, 0.4, 0.3},
+                      {0.1, 0.2, 0.9}, {0.5, 0.2, 0.9}, {0.5, 0.4, 0.9}, {0.1, 0.4, 0.9}};
+  const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  for (auto flip : {false, true}) {
+    m.tris.clear();
+    for (const auto& t : f)
+      m.tris.push_back(flip ? geometry::Triangle{c[t[0]], c[t[2]], c[t[1]]}
+                            : geometry::Triangle{c[t[0]], c[t[1]], c[t[2]]});
+    const geometry::MassProperties p = geometry::mesh_mass_properties(m);
+    EXPECT_NEAR(p.volume, ref.volume, 1e-15);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.centroid[k], ref.centroid[k], 1e-14);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(p.inertia[i][j], ref.inertia[i][j], 1e-15) << i << j;
+  }
+}
+
+TEST(MotionCase, FreeBodiesNeedAMassAndASolid) {
+  EXPECT_EQ(motion_error("    body: {density: 500}\n"), "");
+  EXPECT_EQ(
+      motion_error("    body: {mass: 2, constraint: line, direction: [1, 0, -1], mu_static: 0.5, mu_kinetic: 0.4}\n"),
+      "");
+  EXPECT_NE(motion_error("    body: {constraint: line}\n").find("mass or its density"), std::string::npos);
+  EXPECT_NE(motion_error("    body: {mass: 1, density: 500}\n").find("mass or its density"), std::string::npos);
+  EXPECT_NE(motion_error("    body: {mass: 1, mu_static: 0.3}\n").find("constraint: line"), std::string::npos);
+  EXPECT_NE(
+      motion_error("    body: {mass: 1}\n    motion: {law: constant_velocity, velocity: [0, 0, 1]}\n").find("not both"),
+      std::string::npos);
+  EXPECT_NE(motion_error("    body: {mass: 1, inertia: [1, 0, 1]}\n").find("walls.1.body.inertia"), std::string::npos);
+  EXPECT_NE(motion_error("    body: {mass: 1, constraint: rail}\n").find("walls.1.body.constraint"), std::string::npos);
+}

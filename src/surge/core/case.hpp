@@ -87,6 +87,20 @@ struct MotionSpec {
   [[nodiscard]] bool moves() const { return !law.empty(); }
 };
 
+// A wall that moves freely (a rigid body): under gravity and the water's force and
+// moment, in 6 degrees of freedom or along a line (a slider on a rail or slope) with
+// Coulomb friction against it (motion/free_body.hpp).
+struct BodySpec {
+  bool free = false;                    // the wall has a `body` section
+  double mass = 0, density = 0;         // one of them: the mass, or from the volume of the solid box or closed mesh
+  Vec3d inertia{};                      // principal moments about the centre of mass, along x, y, z; 0: from the shape
+  std::string constraint = "none";      // none (6 DOF) | line (translation along direction only)
+  Vec3d direction{1, 0, 0};             // line: the rail
+  double mu_static = 0, mu_kinetic = 0; // line: Coulomb friction against the rail
+  Vec3d velocity{};                     // at t = 0
+  int line = 0;
+};
+
 struct WallSpec {
   std::string name;       // for force gauges
   bool is_mesh = false;   // a triangle surface: an STL file, or an elevation grid (`terrain`)
@@ -97,6 +111,8 @@ struct WallSpec {
   std::string mesh;       // as written in the case file
   std::string mesh_path;  // resolved against the case file's folder
   MotionSpec motion;      // prescribed motion; none by default
+  BodySpec body;          // or free motion
+  [[nodiscard]] bool moves() const { return motion.moves() || body.free; }
   int line = 0;
 };
 

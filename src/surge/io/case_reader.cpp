@@ -448,6 +448,27 @@ MotionSpec parse_motion(const Reader& r, const YAML::Node& m, const std::string&
   return s;
 }
 
+// walls[].body: a free rigid body, a solid box or a closed mesh with a mass or a density.
+BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& path, const WallSpec& ws) {
+  r.check_keys(b, path, keys_under("walls[].body"));
+  BodySpec s;
+  s.free = true;
+  s.line = b.Mark().line + 1;
+  read_fields(r, b, path, body_fields(), s);
+  if ((s.mass > 0) == (s.density > 0))
+    r.fail(b, path, "a free body needs its mass or its density (one of them, positive)");
+  if (ws.terrain || (!ws.is_mesh && !ws.solid))
+    r.fail(b, path, "a free body is a solid box (solid: true) or a closed mesh, not a tank or a terrain");
+  if (s.constraint == "line" && !(norm(s.direction) > 0))
+    r.fail(b["direction"], path + ".direction", "must not be zero");
+  if (s.constraint != "line" && (s.mu_static > 0 || s.mu_kinetic > 0))
+    r.fail(b, path, "friction (mu_static, mu_kinetic) acts against a rail: give constraint: line");
+  if (s.inertia.x < 0 || s.inertia.y < 0 || s.inertia.z < 0 ||
+      (norm(s.inertia) > 0 && !(s.inertia.x > 0 && s.inertia.y > 0 && s.inertia.z > 0)))
+    r.fail(b["inertia"], path + ".inertia", "principal moments must all be positive (or all 0: from the shape)");
+  return s;
+}
+
 WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& path, std::size_t i, const Case& c) {
   r.check_keys(w, path, keys_under("walls[]"));
   WallSpec ws;
@@ -480,6 +501,11 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
   if (w["motion"].IsDefined()) {
     if (ws.terrain) r.fail(w["motion"], path + ".motion", "a terrain does not move; give the moving part its own wall");
     ws.motion = parse_motion(r, w["motion"], path + ".motion", c);
+  }
+  if (w["body"].IsDefined()) {
+    if (w["motion"].IsDefined())
+      r.fail(w["body"], path + ".body", "a wall moves either by a law (motion) or freely (body), not both");
+    ws.body = parse_body(r, w["body"], path + ".body", ws);
   }
   return ws;
 }
@@ -592,7 +618,7 @@ GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& p
     gs.wall = r.require<std::string>(g, path, "wall");
     const auto w = std::find_if(c.walls.begin(), c.walls.end(), [&](const WallSpec& x) { return x.name == gs.wall; });
     if (w == c.walls.end()) r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
-    if (!w->motion.moves())
+    if (!w->moves())
       r.fail(g["wall"], path + ".wall", "the wall '" + gs.wall + "' does not move (a force gauge reads a still wall)");
     break;
   }
@@ -855,6 +881,7 @@ void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
     }
     write_fields(e, wall_fields(), w);
     if (w.motion.moves()) write_motion(e, w.motion);
+    if (w.body.free) write_section(e, "body", body_fields(), w.body);
     e << YAML::EndMap;
   }
   e << YAML::EndSeq;

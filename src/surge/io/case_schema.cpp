@@ -255,6 +255,31 @@ const std::vector<Field<MotionSpec>>& motion_fields() {
   return f;
 }
 
+const std::vector<Field<BodySpec>>& body_fields() {
+  using B = BodySpec;
+  static const std::vector<Field<B>> f{
+      {"mass", &B::mass, "kg", non_negative(), {}, "the body's mass (or give density)"},
+      {"density", &B::density, "kg/m^3", non_negative(), {}, "or its density: the mass from the solid's volume"},
+      {"inertia",
+       &B::inertia,
+       "kg m^2",
+       {},
+       {},
+       "principal moments about the centre of mass along x, y, z; [0, 0, 0]: from the shape, uniform density"},
+      {"constraint",
+       &B::constraint,
+       "",
+       {},
+       {"none", "line"},
+       "none: free in 6 degrees of freedom (a floating box); line: translates along direction only (a slider)"},
+      {"direction", &B::direction, "-", {}, {}, "line: the rail's direction"},
+      {"mu_static", &B::mu_static, "-", non_negative(), {}, "line: Coulomb static friction against the rail"},
+      {"mu_kinetic", &B::mu_kinetic, "-", non_negative(), {}, "line: kinetic friction"},
+      {"velocity", &B::velocity, "m/s", {}, {}, "at t = 0"},
+  };
+  return f;
+}
+
 const std::vector<Field<GaugeSpec>>& gauge_fields() {
   using G = GaugeSpec;
   static const std::vector<Field<G>> f{
@@ -364,6 +389,9 @@ void motion_keys(std::vector<KeyDoc>& k) {
                "the point rotations turn about and body gauges report"});
   k.push_back({"walls[].motion.csv", "file", "", "", "t, dx, dy, dz [, rx, ry, rz]",
                "time_series: the table (relative to the case file; t increasing, at least two rows)"});
+  k.push_back({"walls[].body", "mapping", "", "", "a solid box or a closed mesh",
+               "a free rigid body: moves under gravity and the water's force and moment (not with motion)"});
+  add(k, "walls[].body.", body_fields());
 }
 
 std::vector<KeyDoc> build_keys() {

@@ -53,6 +53,7 @@ const std::vector<Field<DemMaterialSpec>>& material_fields();
 const std::vector<Field<FluidRegion>>& fluid_fields();
 const std::vector<Field<WallSpec>>& wall_fields();
 const std::vector<Field<MotionSpec>>& motion_fields();
+const std::vector<Field<BodySpec>>& body_fields();
 const std::vector<Field<GaugeSpec>>& gauge_fields();
 const std::vector<Field<DemWallSpec>>& dem_wall_fields();
 const std::vector<Field<DemPackSpec>>& pack_fields();

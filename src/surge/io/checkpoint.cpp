@@ -11,7 +11,9 @@
 namespace surge::io {
 namespace {
 
-constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '3'}; // 2: with the DEM state; 3: hazard maps
+constexpr char magic[8] = {
+    'S', 'U', 'R', 'G',
+    'E', 'C', 'K', '3'}; // 2: with the DEM state; 3: hazard maps; 4: free bodies (written only with them)
 
 class Writer {
 public:
@@ -83,6 +85,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   });
   w.put_vec(std::vector<char>(c.dem_state.begin(), c.dem_state.end()));
   w.put_vec(std::vector<char>(c.hazard_state.begin(), c.hazard_state.end()));
+  // Version 4 adds the free bodies; without them version 3's bytes are written (the same
+  // checkpoint as before bodies existed).
+  if (!c.body_state.empty()) {
+    w.bytes_[sizeof magic - 1] = '4';
+    w.put_vec(std::vector<char>(c.body_state.begin(), c.body_state.end()));
+  }
   write_file_atomic(path, w.bytes_);
 }
 
@@ -97,11 +105,11 @@ Checkpoint read_checkpoint(const std::string& path) {
   const char version = bytes.size() >= sizeof magic && std::memcmp(bytes.data(), magic, sizeof magic - 1) == 0
                            ? bytes[sizeof magic - 1]
                            : '\0';
-  if (version < '1' || version > magic[sizeof magic - 1]) {
-    if (version > magic[sizeof magic - 1])
+  if (version < '1' || version > '4') {
+    if (version > '4')
       throw InputError(path, 0, "",
                        std::string("checkpoint version ") + version +
-                           " is newer than this surge reads (3); restart it with the surge that wrote it");
+                           " is newer than this surge reads (4); restart it with the surge that wrote it");
     throw InputError(path, 0, "", "not a surge checkpoint");
   }
   const bool v1 = version == '1';
@@ -133,6 +141,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (version >= '3') {
     const auto hz = r.get_vec<char>();
     c.hazard_state.assign(hz.begin(), hz.end());
+  }
+  if (version >= '4') {
+    const auto b = r.get_vec<char>();
+    c.body_state.assign(b.begin(), b.end());
   }
   const auto n = p.pos.size();
   bool sizes_agree = r.done();

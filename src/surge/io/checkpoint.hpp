@@ -18,6 +18,7 @@ struct Checkpoint {
   particles::HostParticles particles; // with vel_prev / rho_prev
   std::string dem_state;              // coupled runs: DemSolver::save(), opaque; empty otherwise
   std::string hazard_state;           // sph::HazardMaps::save(), opaque; empty without hazard maps
+  std::string body_state;             // sim::MovingBodies::save(): free bodies, opaque; empty without them
 };
 
 // Binary, little-endian, written atomically.

@@ -226,6 +226,13 @@ int check(const Case& c) {
   }
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const auto& m = bodies.wall(k);
+    if (const motion::FreeBody* f = bodies.free_body(k)) {
+      std::printf("moving      wall '%s' (%u particles): a free body of %.4g kg (%s), centre of mass [%g, %g, %g] m\n",
+                  c.walls[m.wall].name.c_str(), m.last - m.first, f->mass(),
+                  c.walls[m.wall].body.constraint == "line" ? "along a line" : "6 degrees of freedom", m.pivot.x,
+                  m.pivot.y, m.pivot.z);
+      continue;
+    }
     const motion::Pose end = bodies.pose(k, c.time.end);
     std::printf(
         "moving      wall '%s' (%u particles): %s from t = %g s, pivot [%g, %g, %g] m, at t = %g s moved by [%.4g, "
@@ -333,7 +340,8 @@ public:
     dist_.stepped();
     if (cp_) cp_->coupling->after_fluid_step(solver_, *cp_->dem, s.dt);
     t += s.dt;
-    bodies_.place(solver_, t); // the run loop's new time, the same double
+    bodies_.advance(solver_, s.dt); // free bodies under the water's force of the step's rates
+    bodies_.place(solver_, t);      // the run loop's new time, the same double
     dist_.combine(s, stop, checkpoint_due);
     for (Totals* x : {&tot_, &since_output_}) {
       x->removed_domain += s.removed_domain;
@@ -435,6 +443,7 @@ public:
     k.non_finite = tot_.non_finite;
     dist_.gather(k.particles, true);
     if (cp_) k.dem_state = cp_->dem->save();
+    k.body_state = bodies_.save();
     if (hazard_.enabled()) k.hazard_state = hazard_.save();
   }
 
@@ -525,6 +534,7 @@ private:
                                                      : "the checkpoint holds hazard maps but the case has none") +
                            "; restart with the case.yaml of that run");
     if (hazard_.enabled()) hazard_.restore(ck.hazard_state, path);
+    bodies_.restore(ck.body_state, path);
     if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges_.names().size() + 1)
       throw InputError(path, 0, "gauges",
                        "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");

@@ -54,7 +54,7 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
       double z0 = c.domain.min.z;
       // A moving wall (a gate lifted from the bed) is no bed.
       for (std::size_t w = 0; w < c.walls.size(); ++w) {
-        if (c.walls[w].motion.moves()) continue;
+        if (c.walls[w].moves()) continue;
         if (const auto bed = geometry::bed_below(c.walls[w], meshes[w].get(), g.x, g.y);
             bed && *bed > z0 && *bed < c.domain.max.z)
           z0 = *bed;

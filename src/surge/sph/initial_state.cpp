@@ -1,6 +1,7 @@
 #include "surge/sph/initial_state.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/geometry/mass_properties.hpp"
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/geometry/reservoir.hpp"
 #include "surge/geometry/terrain.hpp"
@@ -34,8 +35,11 @@ std::pair<Vec3, Vec3> fluid_region(const Case& c, const InitialState& init) {
 }
 using Meshes = std::vector<std::unique_ptr<geometry::Mesh>>;
 
-// A moving wall's pivot: as given, else the centre of its box or of its mesh's bounds.
+// A moving wall's pivot: a free body's centre of mass; as given; else the centre of its
+// box or of its mesh's bounds.
 Vec3d wall_pivot(const WallSpec& w, const geometry::Mesh* mesh) {
+  if (w.body.free)
+    return (mesh ? geometry::mesh_mass_properties(*mesh) : geometry::box_mass_properties(w.box)).centroid;
   if (w.motion.pivot_given) return w.motion.pivot;
   const Box b = mesh ? geometry::bounds(*mesh) : w.box;
   return (b.min + b.max) * 0.5;
@@ -126,7 +130,7 @@ InitialState build_initial_state(const Case& c) {
       s.wall_reach.push_back({static_cast<Real>(reach.patch), static_cast<Real>(reach.sphere), extra});
     }
     s.wall_ids.emplace_back(first, next_id);
-    if (ws.motion.moves()) s.moving.push_back({first, next_id, w, wall_pivot(ws, meshes[w].get())});
+    if (ws.moves()) s.moving.push_back({first, next_id, w, wall_pivot(ws, meshes[w].get())});
     s.n_wall += pts.size();
   }
   if (c.fluid.size() > 0 && s.n_fluid == 0)

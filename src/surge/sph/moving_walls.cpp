@@ -1,5 +1,6 @@
 #include "surge/sph/moving_walls.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace surge::sph {
@@ -21,6 +22,22 @@ void place_moving(const particles::ParticleView& p, const MovingRange* ranges, i
           p.pos[i] = x.pos;
           p.vel[i] = x.vel;
           if (ghost_out) ghost_out[id - first_boundary] = rotate(states[k].q, ghost0[a]);
+          return;
+        }
+      });
+}
+// acc[a], pos[a] of every owned moving wall particle (a = its arm's index).
+void collect_moving(const particles::ParticleView& p, const MovingRange* ranges, int n_ranges, Vec3* acc, Vec3* pos) {
+  const auto wall = static_cast<std::uint8_t>(Kind::Wall);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] != wall || !p.owned(i)) return;
+        const std::uint32_t id = p.id[i];
+        for (int k = 0; k < n_ranges; ++k) {
+          const MovingRange r = ranges[k];
+          if (id < r.first || id >= r.last) continue;
+          acc[r.base + (id - r.first)] = p.acc[i];
+          pos[r.base + (id - r.first)] = p.pos[i];
           return;
         }
       });
@@ -50,6 +67,34 @@ void MovingWalls::place(const particles::ParticleView& p, const std::vector<Rigi
   par::upload(states_, states);
   detail::place_moving(p, ranges_.data(), bodies(), arm0_.data(), states_.data(),
                        ghost0_.size() ? ghost0_.data() : nullptr, ghost0_.size() ? ghost_out : nullptr, first_boundary);
+}
+
+std::vector<MovingWalls::Load> MovingWalls::loads(const particles::ParticleView& p, const std::vector<bool>& wanted,
+                                                  const std::vector<Vec3d>& centre, Real mass,
+                                                  const Distribution& dist) {
+  std::vector<Load> out(ranges_host_.size());
+  if (std::none_of(wanted.begin(), wanted.end(), [](bool w) { return w; })) return out;
+  acc_.resize(arm0_.size());
+  pos_.resize(arm0_.size());
+  par::fill(acc_, Vec3{});
+  par::fill(pos_, Vec3{});
+  detail::collect_moving(p, ranges_.data(), bodies(), acc_.data(), pos_.data());
+  std::vector<Vec3> acc, pos;
+  par::download(acc, acc_, acc_.size());
+  par::download(pos, pos_, pos_.size());
+  dist.sum(reinterpret_cast<Real*>(acc.data()), 3 * acc.size());
+  dist.sum(reinterpret_cast<Real*>(pos.data()), 3 * pos.size());
+  for (std::size_t k = 0; k < ranges_host_.size(); ++k) {
+    if (!wanted[k]) continue;
+    const MovingRange& r = ranges_host_[k];
+    Vec3d f{}, m{};
+    for (std::uint32_t a = r.base; a < r.base + (r.last - r.first); ++a) {
+      f += Vec3d(acc[a]);
+      m += cross(Vec3d(pos[a]) - centre[k], Vec3d(acc[a]));
+    }
+    out[k] = {f * static_cast<double>(mass), m * static_cast<double>(mass)};
+  }
+  return out;
 }
 
 } // namespace surge::sph

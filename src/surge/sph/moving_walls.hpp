@@ -4,6 +4,7 @@
 // (continuity, viscosity) and what the no-penetration condition holds water against;
 // with mDBC their ghost offsets turn with them.
 #pragma once
+#include "surge/core/distribution.hpp"
 #include "surge/core/rigid_state.hpp"
 #include "surge/par/parallel.hpp"
 #include "surge/particles/particle_store.hpp"
@@ -32,8 +33,16 @@ public:
   // ghost offsets turned.
   void place(const particles::ParticleView& p, const std::vector<RigidState>& states, Vec3* ghost_out,
              std::uint32_t first_boundary);
+  // The water's force on body k's particles and its moment about centre[k] (local), for
+  // the bodies with wanted[k]: sums of m a over the particles in id order, in double (each
+  // particle's owner contributes it), the same on any number of threads or processes.
+  struct Load {
+    Vec3d force{}, moment{};
+  };
+  std::vector<Load> loads(const particles::ParticleView& p, const std::vector<bool>& wanted,
+                          const std::vector<Vec3d>& centre, Real mass, const Distribution& dist);
   [[nodiscard]] std::size_t bytes() const {
-    return ranges_.bytes() + arm0_.bytes() + ghost0_.bytes() + states_.bytes();
+    return ranges_.bytes() + arm0_.bytes() + ghost0_.bytes() + states_.bytes() + acc_.bytes() + pos_.bytes();
   }
 
 private:
@@ -41,6 +50,7 @@ private:
   par::Buffer<MovingRange> ranges_;
   par::Buffer<Vec3> arm0_, ghost0_; // per moving wall particle: r0 - pivot0, the ghost offset as placed
   par::Buffer<RigidState> states_;
+  par::Buffer<Vec3> acc_, pos_; // loads: each moving wall particle's acceleration and position
 };
 
 } // namespace surge::sph

@@ -82,6 +82,11 @@ public:
   // loop calls it after each step with the states at the new time, and at the start.
   void move_walls(const std::vector<RigidState>& states);
   [[nodiscard]] bool has_moving_walls() const { return moving_.any(); }
+  // The water's force and moment (about centre[k], local) on the moving walls with
+  // wanted[k], from the last rates (MovingWalls::loads).
+  std::vector<MovingWalls::Load> moving_loads(const std::vector<bool>& wanted, const std::vector<Vec3d>& centre) {
+    return moving_.loads(store_.view(), wanted, centre, cfg_.prm.mass, dist_);
+  }
   // Particles were changed from outside (body particles moved, a halo exchange): rates must be recomputed.
   void invalidate() { fresh_ = false; }
 
