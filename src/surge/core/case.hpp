@@ -98,6 +98,7 @@ struct BodySpec {
   Vec3d direction{1, 0, 0};             // line: the rail
   double mu_static = 0, mu_kinetic = 0; // line: Coulomb friction against the rail
   Vec3d velocity{};                     // at t = 0
+  Vec3d spin{};                         // 6 DOF: angular velocity at t = 0 [rad/s] (a perturbation)
   int line = 0;
 };
 

@@ -461,6 +461,8 @@ BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& pat
     r.fail(b, path, "a free body is a solid box (solid: true) or a closed mesh, not a tank or a terrain");
   if (s.constraint == "line" && !(norm(s.direction) > 0))
     r.fail(b["direction"], path + ".direction", "must not be zero");
+  if (s.constraint == "line" && norm(s.spin) > 0)
+    r.fail(b["spin"], path + ".spin", "a body on a line does not turn; spin applies to constraint: none");
   if (s.constraint != "line" && (s.mu_static > 0 || s.mu_kinetic > 0))
     r.fail(b, path, "friction (mu_static, mu_kinetic) acts against a rail: give constraint: line");
   if (s.inertia.x < 0 || s.inertia.y < 0 || s.inertia.z < 0 ||
@@ -537,14 +539,15 @@ void parse_component(const Reader& r, const YAML::Node& g, const std::string& pa
   case GaugeType::Sphere:
   case GaugeType::Body: {
     gs.component = r.get<std::string>(g, path, "component", "z");
-    const std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
+    std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
+    if (gs.type == GaugeType::Body) ok.insert("tilt");
     if (ok.count(gs.component) == 0)
       r.fail(g["component"], key,
              gs.type == GaugeType::Sphere
                  ? "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
                    "mz (fluid moment about the centre)"
-                 : "a body gauge reads x, y, z (pivot), vx, vy, vz (its velocity), fx, fy, fz (the water's force) or "
-                   "mx, my, mz (the water's moment about the pivot)");
+                 : "a body gauge reads x, y, z (pivot), vx, vy, vz (its velocity), fx, fy, fz (the water's force), "
+                   "mx, my, mz (the water's moment about the pivot) or tilt (degrees from upright)");
     return;
   }
   case GaugeType::DemWall: {

@@ -276,6 +276,7 @@ const std::vector<Field<BodySpec>>& body_fields() {
       {"mu_static", &B::mu_static, "-", non_negative(), {}, "line: Coulomb static friction against the rail"},
       {"mu_kinetic", &B::mu_kinetic, "-", non_negative(), {}, "line: kinetic friction"},
       {"velocity", &B::velocity, "m/s", {}, {}, "at t = 0"},
+      {"spin", &B::spin, "rad/s", {}, {}, "none: the angular velocity at t = 0 (a perturbation)"},
   };
   return f;
 }
@@ -434,7 +435,8 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"gauges[].y", "number", "required (height)", "m", "", "height gauge: the vertical line's y"});
   k.push_back({"gauges[].at", vec, "required (pressure, velocity)", "m", "inside the domain", "the probe's point"});
   k.push_back({"gauges[].component", "choice", "by type", "", "x y z mag | x..mz | fx..mz",
-               "velocity and force: x, y, z, mag; sphere and body: x, y, z, vx..vz, fx..fz, mx..mz; dem_wall: fx..mz"});
+               "velocity and force: x, y, z, mag; sphere and body: x, y, z, vx..vz, fx..fz, mx..mz (body: and tilt, "
+               "degrees); dem_wall: fx..mz"});
   k.push_back({"gauges[].wall", "text", "required (force, dem_wall, body)", "", "a wall's name",
                "the wall measured (body: a moving wall, its pivot's position and velocity, the water's force and "
                "moment about the pivot)"});

@@ -43,6 +43,9 @@ FreeBody::FreeBody(const BodySpec& spec, double mass, const Vec3d& centre, const
     v_ = d_ * dot(spec.velocity, d_);
   } else {
     v_ = spec.velocity;
+    // L = I0 w at placement (body and world axes agree then).
+    for (int i = 0; i < 3; ++i)
+      l_[i] = inertia[i][0] * spec.spin.x + inertia[i][1] * spec.spin.y + inertia[i][2] * spec.spin.z;
   }
 }
 

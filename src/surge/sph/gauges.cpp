@@ -189,10 +189,14 @@ Gauges::Load Gauges::wall_load(WcsphSolver& solver, const Probe& pr, const Distr
 }
 
 // A body gauge: its pivot's position (absolute) and velocity, the water's force on it and
-// moment about the pivot.
+// moment about the pivot, or its tilt.
 double Gauges::body_value(WcsphSolver& solver, const Probe& pr, const Distribution& dist) {
   const RigidState s = bodies_.at(static_cast<std::size_t>(pr.body));
   const std::string& c = pr.spec.component;
+  if (c == "tilt") { // the angle between the body's z axis, as placed, and z [degrees]
+    const double qx = s.q[1], qy = s.q[2];
+    return std::acos(std::fmax(-1.0, std::fmin(1.0, 1 - 2 * (qx * qx + qy * qy)))) * 180 / M_PI;
+  }
   const int axis = c.back() - 'x';
   if (c.size() == 1) return static_cast<double>(s.pos[axis]) + origin_[axis];
   if (c[0] == 'v') return s.vel[axis];
