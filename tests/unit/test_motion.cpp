@@ -305,3 +305,16 @@ TEST(MotionCase, FreeBodiesNeedAMassAndASolid) {
   EXPECT_NE(motion_error("    body: {mass: 1, inertia: [1, 0, 1]}\n").find("walls.1.body.inertia"), std::string::npos);
   EXPECT_NE(motion_error("    body: {mass: 1, constraint: rail}\n").find("walls.1.body.constraint"), std::string::npos);
 }
+
+// A slider with a travel stops for good at the rail's end.
+TEST(FreeBody, ASliderStopsAtTheEndOfItsTravel) {
+  BodySpec b;
+  b.free = true;
+  b.constraint = "line";
+  b.direction = {0, 0, -1};
+  b.travel = 0.1;
+  motion::FreeBody body(b, 1.0, {0, 0, 1}, diag(1, 1, 1), {0, 0, -9.81});
+  for (int k = 0; k < 1000; ++k) body.advance({}, {}, 1e-3);
+  EXPECT_NEAR(body.pose().shift.z, -0.1, 1e-12);
+  EXPECT_EQ(body.pose().vel.z, 0);
+}

@@ -97,8 +97,9 @@ struct BodySpec {
   std::string constraint = "none";      // none (6 DOF) | line (translation along direction only)
   Vec3d direction{1, 0, 0};             // line: the rail
   double mu_static = 0, mu_kinetic = 0; // line: Coulomb friction against the rail
-  Vec3d velocity{};                     // at t = 0
-  Vec3d spin{};                         // 6 DOF: angular velocity at t = 0 [rad/s] (a perturbation)
+  double travel = 0; // line: > 0, the body stops for good after this far along direction (a stop block) [m]
+  Vec3d velocity{};  // at t = 0
+  Vec3d spin{};      // 6 DOF: angular velocity at t = 0 [rad/s] (a perturbation)
   int line = 0;
 };
 

@@ -275,6 +275,12 @@ const std::vector<Field<BodySpec>>& body_fields() {
       {"direction", &B::direction, "-", {}, {}, "line: the rail's direction"},
       {"mu_static", &B::mu_static, "-", non_negative(), {}, "line: Coulomb static friction against the rail"},
       {"mu_kinetic", &B::mu_kinetic, "-", non_negative(), {}, "line: kinetic friction"},
+      {"travel",
+       &B::travel,
+       "m",
+       non_negative(),
+       {},
+       "line: > 0, the body stops for good this far along direction (the rail's end); 0: no end"},
       {"velocity", &B::velocity, "m/s", {}, {}, "at t = 0"},
       {"spin", &B::spin, "rad/s", {}, {}, "none: the angular velocity at t = 0 (a perturbation)"},
   };

@@ -36,8 +36,8 @@ Matrix3 inverse(const Matrix3& m) {
 }
 
 FreeBody::FreeBody(const BodySpec& spec, double mass, const Vec3d& centre, const Matrix3& inertia, const Vec3d& gravity)
-    : line_(spec.constraint == "line"), mu_s_(spec.mu_static), mu_k_(spec.mu_kinetic), mass_(mass), g_(gravity),
-      x0_(centre), inv_i0_(inverse(inertia)), x_(centre) {
+    : line_(spec.constraint == "line"), mu_s_(spec.mu_static), mu_k_(spec.mu_kinetic), travel_(spec.travel),
+      mass_(mass), g_(gravity), x0_(centre), inv_i0_(inverse(inertia)), x_(centre) {
   if (line_) {
     d_ = spec.direction * (1 / norm(spec.direction));
     v_ = d_ * dot(spec.velocity, d_);
@@ -59,6 +59,7 @@ void FreeBody::advance_on_line(const Vec3d& force, double dt) {
   const double along = dot(f, d_);
   const double normal = norm(f - d_ * along);
   double v = dot(v_, d_);
+  if (travel_ > 0 && dot(x_ - x0_, d_) >= travel_) return; // at the rail's end
   if (v == 0) {
     if (std::fabs(along) <= mu_s_ * normal) return; // held by static friction
     v = dt * (along - std::copysign(mu_k_ * normal, along)) / mass_;
@@ -69,6 +70,10 @@ void FreeBody::advance_on_line(const Vec3d& force, double dt) {
   }
   v_ = d_ * v;
   x_ += v_ * dt;
+  if (travel_ > 0 && dot(x_ - x0_, d_) >= travel_) { // at the rail's end: stopped there
+    x_ = x0_ + d_ * travel_;
+    v_ = {};
+  }
 }
 
 void FreeBody::advance(const Vec3d& force, const Vec3d& moment, double dt) {

@@ -6,7 +6,8 @@
 //   L+ = L + dt M,  w+ = R I0^-1 R^T L+,  q+ = exp(w+ dt / 2) q      (angular momentum kept)
 // On a line only the force along it accelerates the body; the rest is the rail's reaction
 // N = |F_perp|, and friction holds the body while |F_line| <= mu_s N, else acts against the
-// motion with mu_k N (a body whose speed would change sign stops and sticks).
+// motion with mu_k N (a body whose speed would change sign stops and sticks); with a travel,
+// it stops for good at the rail's end.
 #pragma once
 #include "surge/core/case.hpp"
 #include "surge/motion/pose.hpp"
@@ -40,7 +41,7 @@ private:
   void advance_on_line(const Vec3d& force, double dt);
   bool line_ = false;
   Vec3d d_{};
-  double mu_s_ = 0, mu_k_ = 0;
+  double mu_s_ = 0, mu_k_ = 0, travel_ = 0;
   double mass_ = 0;
   Vec3d g_{}, x0_{};
   Matrix3 inv_i0_{};
