@@ -3,6 +3,8 @@
 
   plot_moving_walls.py front NOGATE_DIR GATE_DIR DATA_DIR OUT.png   dam break I front with and without the gate
   plot_moving_walls.py solitary RUN_DIR OUT.png                     the piston's solitary wave at its gauges
+  plot_moving_walls.py floating BOX_DIR CUBE_DIR OUT.png            the floating box and cube: draft and tilt
+  plot_moving_walls.py slide RUN_DIR OUT.png                        the rigid wedge: its speed and the waves
 
 NOGATE_DIR and GATE_DIR are the output folders of tests/python/test_dambreak_front.py
 (without and with `gate`), RUN_DIR that of cases/solitary_piston.yaml."""
@@ -57,8 +59,41 @@ def solitary(run, out):
     fig.savefig(out, dpi=110)
 
 
+def floating(box, cube, out):
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    for d, lab in ((box, "box 0.2 x 0.2 x 0.1 m"), (cube, "cube 0.1 m")):
+        g = np.genfromtxt(os.path.join(d, "gauges.csv"), delimiter=",", names=True)
+        ax.plot(g["time"], (g["level"] - (g["z"] - 0.05)) / 0.05, label=lab)
+        bx.plot(g["time"], g["tilt"], label=lab)
+    ax.axhline(1, color="k", lw=0.6, ls=":")
+    ax.set_ylabel("draft / (H/2)")
+    ax.set_ylim(0.9, 1.1)
+    ax.legend(fontsize=8)
+    ax.set_title("Free bodies of density 500, kicked by 0.5 rad/s about x (mdbc, dp = 1 cm)")
+    bx.set_ylabel("tilt [degrees]")
+    bx.set_xlabel("t [s]")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def slide(run, out):
+    g = np.genfromtxt(os.path.join(run, "gauges.csv"), delimiter=",", names=True)
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    speed = g["wedge_vx"] / np.cos(np.radians(35))
+    ax.plot(g["time"], speed, "k", label="wedge speed along the slope")
+    a = 9.81 * (np.sin(np.radians(35)) - 0.3 * np.cos(np.radians(35)))
+    ax.plot(g["time"], np.minimum(a * g["time"], speed.max() * 1.5), "k:", lw=0.8, label="g (sin - mu_k cos) t, dry")
+    ax.set_ylabel("m/s")
+    ax.legend(fontsize=8)
+    ax.set_title("Rigid wedge on a 35-degree slope into water 0.3 m deep (mdbc, dp = 12.5 mm)")
+    for name, x in (("H_09", 0.9), ("H_12", 1.2), ("H_15", 1.5)):
+        bx.plot(g["time"], g[name] - 0.3, label=f"x = {x} m")
+    bx.set_ylabel("eta [m]")
+    bx.set_xlabel("t [s]")
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 if __name__ == "__main__":
-    if sys.argv[1] == "front":
-        front(*sys.argv[2:6])
-    else:
-        solitary(*sys.argv[2:4])
+    {"front": front, "solitary": solitary, "floating": floating, "slide": slide}[sys.argv[1]](*sys.argv[2:])

@@ -431,11 +431,12 @@ MotionSpec parse_motion(const Reader& r, const YAML::Node& m, const std::string&
     const auto k = kv.first.as<std::string>();
     if (k == "law" || k == "start" || k == "pivot" || std::find(takes.begin(), takes.end(), k) != takes.end()) continue;
     std::string list = "start, pivot";
-    for (const auto& t : takes) list += ", " + t;
-    r.fail(kv.first, path + "." + k, "does not apply to the law " + s.law + " (it reads " + list + ")");
+    for (const auto& t : takes) list.append(", ").append(t);
+    r.fail(kv.first, std::string(path).append(".").append(k),
+           "does not apply to the law " + s.law + " (it reads " + list + ")");
   }
   for (const auto& k : e->required)
-    if (!m[k].IsDefined()) r.fail(m, path + "." + k, "is required by the motion law " + s.law);
+    if (!m[k].IsDefined()) r.fail(m, std::string(path).append(".").append(k), "is required by the motion law " + s.law);
   if (m["pivot"].IsDefined()) {
     s.pivot = r.as<Vec3d>(m["pivot"], path + ".pivot");
     s.pivot_given = true;

@@ -33,9 +33,10 @@ WallHold::WallHold(const InitialState& init, const Vec3* shared)
       row_body_.push_back(body);
     }
     row[b] = it->second;
-    if (r.reach.extra >= 0)
-      for (int e = 0; e < (r.reach.extra & 3); ++e)
-        extra_body_[static_cast<std::size_t>((r.reach.extra >> 2) + e)] = body;
+    if (r.reach.extra >= 0) {
+      const auto first_extra = static_cast<std::size_t>(r.reach.extra >> 2);
+      for (int e = 0; e < (r.reach.extra & 3); ++e) extra_body_[first_extra + static_cast<std::size_t>(e)] = body;
+    }
   }
   par::upload(row_, row);
   par::upload(rows_, rows);
