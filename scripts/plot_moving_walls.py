@@ -85,7 +85,7 @@ def slide(run, out):
     ax.plot(g["time"], np.minimum(a * g["time"], speed.max() * 1.5), "k:", lw=0.8, label="g (sin - mu_k cos) t, dry")
     ax.set_ylabel("m/s")
     ax.legend(fontsize=8)
-    ax.set_title("Rigid wedge on a 35-degree slope into water 0.3 m deep (mdbc, dp = 12.5 mm)")
+    ax.set_title("Rigid wedge, 35-degree slope, water 0.3 m deep (mdbc, dp = 12.5 mm)")
     for name, x in (("H_09", 0.9), ("H_12", 1.2), ("H_15", 1.5)):
         bx.plot(g["time"], g[name] - 0.3, label=f"x = {x} m")
     bx.set_ylabel("eta [m]")
