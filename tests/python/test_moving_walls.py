@@ -77,49 +77,50 @@ for boundary, v, end in runs:
     print(f"     mean fx over t > {min(0.05, end / 2)} s: {fx:.3f} N, drag coefficient {cd:.2f}")
     check(fx < 0, f"{name}: the water holds the block back (mean fx {fx:.3f} N < 0)")
 
+
+def restarted_bitwise(name, text, boundary):
+    """Runs `text` to 0.06 s straight and stopped at 0.03 s then restarted; checks that
+    gauges, fluid and wall frames and checkpoint are the same bits. Returns the straight
+    run's folder, or None if a run failed."""
+    path = os.path.join(WORK, name + ".yaml")
+    open(path, "w").write(text.format(end=0.06, boundary=boundary, v=0))
+    a, b = os.path.join(WORK, name + "_straight"), os.path.join(WORK, name + "_restarted")
+    ra = subprocess.run([SURGE, "run", path, "--out", a, "--quiet"], capture_output=True, text=True)
+    rb = subprocess.run([SURGE, "run", path, "--out", b, "--quiet", "--set", "time.end=0.03"], capture_output=True,
+                        text=True)
+    rc = subprocess.run([SURGE, "restart", b, "--set", "time.end=0.06", "--quiet"], capture_output=True, text=True)
+    check(ra.returncode == rb.returncode == rc.returncode == 0, f"the {name} runs and restarts ({rc.stderr[-200:]})")
+    if rc.returncode != 0:
+        return None
+    for f in ("gauges.csv", "particles/fluid_0006.vtp", "particles/walls_0006.vtp", "checkpoint.bin"):
+        same = open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read()
+        check(same, f"{name} restarted at 0.03 s: {f} bitwise identical to the straight run")
+    return a
+
+
 # A restart continues a moving wall bitwise: a flap turning about its hinge (sinusoidal,
-# 15 degrees, dynamic boundary: its no-penetration faces turn with it) run to 0.06 s
-# straight and stopped at 0.03 s then restarted.
-BLOCK_MOTION = "    motion: {{law: constant_velocity, velocity: [{v}, 0, 0]}}\n"
-FLAP = CASE.replace("  - name: block\n    box: {{min: [0.1, 0.04, 0.06], max: [0.14, 0.08, 0.14]}}\n    solid: true\n"
-                    "    motion: {{law: constant_velocity, velocity: [{v}, 0, 0]}}\n",
-                    "  - name: block\n    box: {{min: [0.1, 0, 0], max: [0.13, 0.12, 0.25]}}\n    solid: true\n"
+# 15 degrees, dynamic boundary: its no-penetration faces turn with it).
+BLOCK = ("  - name: block\n    box: {{min: [0.1, 0.04, 0.06], max: [0.14, 0.08, 0.14]}}\n    solid: true\n"
+         "    motion: {{law: constant_velocity, velocity: [{v}, 0, 0]}}\n")
+FLAP = CASE.replace(BLOCK, "  - name: block\n    box: {{min: [0.1, 0, 0], max: [0.13, 0.12, 0.25]}}\n    solid: true\n"
                     "    motion: {{law: sinusoidal, period: 0.5, angle: 15, axis: [0, 1, 0], pivot: [0.115, 0.06, 0]}}\n")
 FLAP = FLAP.replace("bx, type: body, wall: block, component: x", "bmy, type: body, wall: block, component: my")
 FLAP = FLAP.replace("bvx, type: body, wall: block, component: vx", "bvz, type: body, wall: block, component: vz")
 assert FLAP != CASE
-path = os.path.join(WORK, "flap.yaml")
-open(path, "w").write(FLAP.format(end=0.06, boundary="dynamic", v=0))
-a, b = os.path.join(WORK, "flap_straight"), os.path.join(WORK, "flap_restarted")
-ra = subprocess.run([SURGE, "run", path, "--out", a, "--quiet"], capture_output=True, text=True)
-rb = subprocess.run([SURGE, "run", path, "--out", b, "--quiet", "--set", "time.end=0.03"], capture_output=True, text=True)
-rc = subprocess.run([SURGE, "restart", b, "--set", "time.end=0.06", "--quiet"], capture_output=True, text=True)
-check(ra.returncode == rb.returncode == rc.returncode == 0, f"the flap runs and restarts ({rc.stderr[-200:]})")
-if rc.returncode == 0:
-    for f in ("gauges.csv", "particles/fluid_0006.vtp", "particles/walls_0006.vtp", "checkpoint.bin"):
-        same = open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read()
-        check(same, f"flap restarted at 0.03 s: {f} bitwise identical to the straight run")
-    s = json.load(open(os.path.join(a, "summary.json")))
+out = restarted_bitwise("flap", FLAP, "dynamic")
+if out:
+    s = json.load(open(os.path.join(out, "summary.json")))
     check(s["in_walls"]["max_at_an_output"] == 0 and s["removed"]["total"] == 0,
           f"flap: no fluid inside a wall or removed ({s['in_walls']}, removed {s['removed']['total']})")
 
 # A free body restarts bitwise too (its state rides in the checkpoint): the block, density
-# 700, let go in the water (it rises), stopped at 0.03 s and restarted to 0.06 s.
-FREE = CASE.replace(BLOCK_MOTION, "    body: {{density: 700}}\n")
+# 700, let go in the water (it rises).
+FREE = CASE.replace(BLOCK, BLOCK.split("    motion:")[0] + "    body: {{density: 700}}\n")
 FREE = FREE.replace("bvx, type: body, wall: block, component: vx", "bvz, type: body, wall: block, component: vz")
 assert FREE != CASE
-path = os.path.join(WORK, "free.yaml")
-open(path, "w").write(FREE.format(end=0.06, boundary="mdbc", v=0))
-a, b = os.path.join(WORK, "free_straight"), os.path.join(WORK, "free_restarted")
-ra = subprocess.run([SURGE, "run", path, "--out", a, "--quiet"], capture_output=True, text=True)
-rb = subprocess.run([SURGE, "run", path, "--out", b, "--quiet", "--set", "time.end=0.03"], capture_output=True, text=True)
-rc = subprocess.run([SURGE, "restart", b, "--set", "time.end=0.06", "--quiet"], capture_output=True, text=True)
-check(ra.returncode == rb.returncode == rc.returncode == 0, f"the free block runs and restarts ({rc.stderr[-200:]})")
-if rc.returncode == 0:
-    for f in ("gauges.csv", "particles/fluid_0006.vtp", "particles/walls_0006.vtp", "checkpoint.bin"):
-        same = open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read()
-        check(same, f"free block restarted at 0.03 s: {f} bitwise identical to the straight run")
-    g = np.genfromtxt(os.path.join(a, "gauges.csv"), delimiter=",", names=True)
+out = restarted_bitwise("free block", FREE, "mdbc")
+if out:
+    g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
     check(g["bvz"][-1] > 0, f"the free block (density 700) rises (vz = {g['bvz'][-1]:.4f} m/s at 0.06 s)")
 
 print("FAILED: " + "; ".join(failures) if failures else "all passed")
