@@ -187,6 +187,27 @@ void print_terrain_warnings(const Case& c, const WallSpec& w) {
                 w.name.c_str(), std::min(g.dx, g.dy), 0.5 * c.dp);
 }
 
+// surge check's line per moving wall: its law and where it is at time.end, or its mass.
+void print_moving_walls(const Case& c, const MovingBodies& bodies) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const auto& m = bodies.wall(k);
+    if (const motion::FreeBody* f = bodies.free_body(k)) {
+      std::printf("moving      wall '%s' (%u particles): a free body of %.4g kg (%s), centre of mass [%g, %g, %g] m\n",
+                  c.walls[m.wall].name.c_str(), m.last - m.first, f->mass(),
+                  c.walls[m.wall].body.constraint == "line" ? "along a line" : "6 degrees of freedom", m.pivot.x,
+                  m.pivot.y, m.pivot.z);
+      continue;
+    }
+    const motion::Pose end = bodies.pose(k, c.time.end);
+    std::printf(
+        "moving      wall '%s' (%u particles): %s from t = %g s, pivot [%g, %g, %g] m, at t = %g s moved by [%.4g, "
+        "%.4g, %.4g] m, speed %.4g m/s\n",
+        c.walls[m.wall].name.c_str(), m.last - m.first, c.walls[m.wall].motion.law.c_str(),
+        c.walls[m.wall].motion.start, m.pivot.x, m.pivot.y, m.pivot.z, c.time.end, end.shift.x, end.shift.y,
+        end.shift.z, norm(end.vel));
+  }
+}
+
 } // namespace
 
 int check(const Case& c) {
@@ -224,23 +245,7 @@ int check(const Case& c) {
                   "(as in a channel under 8 dp wide); a smaller dp resolves the flow across it\n",
                   c.dp, 100 * narrow);
   }
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
-    const auto& m = bodies.wall(k);
-    if (const motion::FreeBody* f = bodies.free_body(k)) {
-      std::printf("moving      wall '%s' (%u particles): a free body of %.4g kg (%s), centre of mass [%g, %g, %g] m\n",
-                  c.walls[m.wall].name.c_str(), m.last - m.first, f->mass(),
-                  c.walls[m.wall].body.constraint == "line" ? "along a line" : "6 degrees of freedom", m.pivot.x,
-                  m.pivot.y, m.pivot.z);
-      continue;
-    }
-    const motion::Pose end = bodies.pose(k, c.time.end);
-    std::printf(
-        "moving      wall '%s' (%u particles): %s from t = %g s, pivot [%g, %g, %g] m, at t = %g s moved by [%.4g, "
-        "%.4g, %.4g] m, speed %.4g m/s\n",
-        c.walls[m.wall].name.c_str(), m.last - m.first, c.walls[m.wall].motion.law.c_str(),
-        c.walls[m.wall].motion.start, m.pivot.x, m.pivot.y, m.pivot.z, c.time.end, end.shift.x, end.shift.y,
-        end.shift.z, norm(end.vel));
-  }
+  print_moving_walls(c, bodies);
   if (cp) {
     std::printf("spheres     %zu, %ld bonds, %zu body particles (%d layers), %zu fluid particles removed inside "
                 "spheres\n",
