@@ -171,6 +171,10 @@ struct DemWallSpec {
   Vec3d point{}, normal{0, 0, 1}; // plane
   std::string mesh_path;          // STL or raster
   int material = 0;
+  MotionSpec motion;   // prescribed motion (a plane or mesh); none by default
+  BodySpec body;       // or free motion (a closed mesh), under the spheres' contacts and gravity
+  std::string follows; // or the motion of the named SPH wall (one solid seen by water and spheres)
+  [[nodiscard]] bool moves() const { return motion.moves() || body.free || !follows.empty(); }
   int line = 0;
 };
 
@@ -226,6 +230,17 @@ struct Case {
   HazardConfig hazard;
 
   [[nodiscard]] bool coupled() const { return dem.active() && !fluid.empty(); }
+  // The wall (SPH) or DEM wall of that name, or null.
+  [[nodiscard]] const WallSpec* wall_named(const std::string& n) const {
+    for (const auto& w : walls)
+      if (w.name == n) return &w;
+    return nullptr;
+  }
+  [[nodiscard]] const DemWallSpec* dem_wall_named(const std::string& n) const {
+    for (const auto& w : dem.walls)
+      if (!w.name.empty() && w.name == n) return &w;
+    return nullptr;
+  }
   [[nodiscard]] double h() const { return sph.h_over_dp * dp; }
   [[nodiscard]] double water_depth() const {
     if (sph.hmax > 0) return sph.hmax;

@@ -114,13 +114,17 @@ void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   sph.invalidate();
 }
 
-int SphDemCoupling::after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt) {
+int SphDemCoupling::after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt,
+                                     const std::function<void(int, double)>& after_sub) {
   // The arrays still hold the rates of this step's start (the fluid has moved since,
   // the body particles have not): no refresh here.
   sum_forces(sph, dem);
   const int n_sub = std::max(1, static_cast<int>(std::ceil(dt / static_cast<double>(dt_dem_) - 1e-9)));
   const auto h = static_cast<Real>(dt / n_sub);
-  for (int k = 0; k < n_sub; ++k) dem.step(h);
+  for (int k = 0; k < n_sub; ++k) {
+    dem.step(h);
+    if (after_sub) after_sub(k, static_cast<double>(h));
+  }
   place_bodies(sph, dem);
   return n_sub;
 }

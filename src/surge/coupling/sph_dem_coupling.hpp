@@ -10,6 +10,7 @@
 #include "surge/coupling/body_particles.hpp"
 #include "surge/dem/dem_solver.hpp"
 #include "surge/sph/wcsph_solver.hpp"
+#include <functional>
 
 #include <vector>
 
@@ -31,7 +32,10 @@ public:
   // v_b = v_k + w_k x (r_b - x_k).
   void place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem);
   // reduce_forces, DEM sub-steps over dt, place_bodies. Returns the number of sub-steps.
-  int after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt);
+  // after_sub(k, h), when given, runs after sub-step k of length h (the run's moving walls
+  // of the DEM advance there).
+  int after_fluid_step(sph::WcsphSolver& sph, dem::DemSolver& dem, double dt,
+                       const std::function<void(int, double)>& after_sub = {});
 
   // A distributed run: each process holds some body particles; their accelerations and
   // positions are combined before the per-sphere sums, and every process then advances

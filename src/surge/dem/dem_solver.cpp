@@ -31,20 +31,22 @@ struct WallCandidate {
   Real dist;
   bool face;
 };
-SURGE_HD inline int wall_contacts(const WallTriangle* tris, const TriangleGridView& grid, const Vec3& x, Real r,
-                                  WallCandidate* out) {
-  WallCandidate cand[max_wall_candidates];
-  int nc = 0;
-  std::uint32_t begin = 0, end = 0;
-  grid.range(x, begin, end);
+// Candidates: the triangles items[begin, end) within r of x (up to max_wall_candidates).
+SURGE_HD inline void add_candidates(const WallTriangle* tris, const std::uint32_t* items, std::uint32_t begin,
+                                    std::uint32_t end, const Vec3& x, Real r, WallCandidate* cand, int& nc) {
   for (std::uint32_t k = begin; k < end && nc < max_wall_candidates; ++k) {
-    const int t = static_cast<int>(grid.items[k]);
+    const int t = static_cast<int>(items[k]);
     const WallTriangle& tr = tris[t];
     const auto cp = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, x);
     const Real d = norm(x - cp.point);
     if (!(d < r) || d <= 0) continue;
     cand[nc++] = {t, cp.point, d, cp.region == geometry::Region::Face};
   }
+}
+// The contacts among nc candidates (faces first, then edges and vertices not on an
+// accepted triangle of the same mesh), into out; returns their count.
+SURGE_HD inline int distinct_contacts(const WallTriangle* tris, const WallCandidate* cand, int nc, Real r,
+                                      WallCandidate* out) {
   const Real tol = Real(1e-4) * r;
   int n = 0;
   for (int pass = 0; pass < 2; ++pass) { // faces, then edges and vertices
@@ -63,6 +65,31 @@ SURGE_HD inline int wall_contacts(const WallTriangle* tris, const TriangleGridVi
   return n;
 }
 
+// The wall triangles sphere (x, r) touches, one per point of contact: the still ones of
+// its grid cell and those of the moving bodies it is near.
+SURGE_HD inline int wall_contacts(const WallTriangle* tris, const TriangleGridView& grid, const WallBodiesView& bodies,
+                                  const Vec3& x, Real r, WallCandidate* out) {
+  WallCandidate cand[max_wall_candidates];
+  int nc = 0;
+  std::uint32_t begin = 0, end = 0;
+  if (grid.start) grid.range(x, begin, end);
+  add_candidates(tris, grid.items, begin, end, x, r, cand, nc);
+  for (int b = 0; b < bodies.n; ++b)
+    if (bodies.near(b, x, r)) add_candidates(tris, bodies.items, bodies.start[b], bodies.start[b + 1], x, r, cand, nc);
+  return distinct_contacts(tris, cand, nc, r, out);
+}
+
+// A wall's velocity at a contact point and its angular velocity: zero for a still wall
+// (body < 0), else those of its body's rigid motion.
+struct WallMotion {
+  Vec3 vel{}, omega{};
+};
+SURGE_HD inline WallMotion wall_motion(const WallBodiesView& b, int body, const Vec3& at) {
+  if (body < 0) return {};
+  const RigidState& s = b.state[body];
+  return {s.vel + cross(s.omega, at - s.pos), s.omega};
+}
+
 // The pair input of sphere i against a wall (a plane or triangle of infinite mass, never
 // bonded; the law says how the wall mixes), and the law's constants for it.
 template <class L>
@@ -72,7 +99,7 @@ struct WallPair {
 };
 template <class L>
 SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* mats, int i, int wall_material,
-                                            const Vec3& n, Real un) {
+                                            const Vec3& n, Real un, const WallMotion& wall) {
   PairInput in;
   in.n = n;
   in.un = un;
@@ -80,8 +107,8 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* ma
   in.rb = 0;
   in.va = v.vel[i];
   in.wa = v.omega[i];
-  in.vb = Vec3{};
-  in.wb = Vec3{};
+  in.vb = wall.vel;
+  in.wb = wall.omega;
   Material unbondable = mats[wall_material];
   unbondable.bonded = false;
   const typename L::Pair law = L::wall(mats[v.material[i]], unbondable, in.ra, v.mass[i]);
@@ -159,15 +186,19 @@ struct WallsView {
   int n_planes;
   const WallTriangle* tris;
   TriangleGridView tri_grid;
+  WallBodiesView bodies;
+  WallReaction* react; // max_wall_slots per sphere, by id: with moving walls only, else null
 };
 template <class L>
 SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, int i, Vec3& f, Vec3& t, int& used) {
   const Vec3 xi = v.pos[i];
   const Real ri = v.radius[i];
-  ContactSlot* wrow = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
-  bool near_plane = false; // most spheres touch no wall: their empty slots stay as they are
-  for (int k = 0; k < w.n_planes; ++k) near_plane = near_plane || dot(xi - w.planes[k].point, w.planes[k].normal) < ri;
-  if (!near_plane && !w.tri_grid.start) {
+  const std::size_t row = static_cast<std::size_t>(v.id[i]) * max_wall_slots;
+  ContactSlot* wrow = v.wall_hist + row;
+  bool near = w.tri_grid.start != nullptr; // most spheres touch no wall: their empty slots stay as they are
+  for (int k = 0; k < w.n_planes; ++k) near = near || dot(xi - w.planes[k].point, w.planes[k].normal) < ri;
+  for (int b = 0; b < w.bodies.n; ++b) near = near || w.bodies.near(b, xi, ri);
+  if (!near) {
     if (wrow[0].partner != no_partner) // (slots are held from the first on)
       for (int k = 0; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
     return;
@@ -175,8 +206,8 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
   ContactSlot old_w[max_wall_slots];
   for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
   int wused = 0;
-  auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material) {
-    const WallPair<L> wp = wall_pair_input<L>(v, w.mats, i, material, n, un);
+  auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material, int body, const Vec3& at) {
+    const WallPair<L> wp = wall_pair_input<L>(v, w.mats, i, material, n, un, wall_motion(w.bodies, body, at));
     ContactSlot s{};
     for (int k = 0; k < max_wall_slots; ++k)
       if (old_w[k].partner == partner) s = old_w[k];
@@ -186,20 +217,25 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
     ++used;
     if (wused < max_wall_slots) {
       wrow[wused] = slot_of(r.springs, partner);
+      if (w.react) w.react[row + wused] = {r.force_a, r.torque_a};
       ++wused;
     }
   };
   for (int k = 0; k < w.n_planes; ++k) {
     const Plane pl = w.planes[k];
     const Real dist = dot(xi - pl.point, pl.normal);
-    if (dist < ri) wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material);
+    if (dist < ri)
+      wall(pl.normal, ri - dist, plane_partner | static_cast<std::uint32_t>(k), pl.material, pl.body,
+           xi - pl.normal * dist);
   }
-  if (w.tri_grid.start) {
+  if (w.tri_grid.start || w.bodies.n > 0) {
     WallCandidate touched[max_wall_candidates];
-    const int nt = wall_contacts(w.tris, w.tri_grid, xi, ri, touched);
-    for (int k = 0; k < nt; ++k)
+    const int nt = wall_contacts(w.tris, w.tri_grid, w.bodies, xi, ri, touched);
+    for (int k = 0; k < nt; ++k) {
+      const WallTriangle& tr = w.tris[touched[k].tri];
       wall((xi - touched[k].point) * (1 / touched[k].dist), ri - touched[k].dist,
-           triangle_partner | static_cast<std::uint32_t>(touched[k].tri), w.tris[touched[k].tri].material);
+           triangle_partner | static_cast<std::uint32_t>(touched[k].tri), tr.material, tr.body, touched[k].point);
+    }
   }
   for (int k = wused; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
 }
@@ -257,8 +293,8 @@ Real max_displacement2(const DemView& v) {
 // again for the current state with a zero time step, which gives the contact force as it
 // stands (normal spring and dashpot, stored shear, rolling and twisting moments).
 template <class L>
-WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, const WallTriangle* tris, int plane,
-                   int mesh, Vec3 about) {
+WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, const WallTriangle* tris,
+                   const WallBodiesView& bodies, int plane, int mesh, Vec3 about) {
   return par::parallel_reduce(
       v.n, WallLoad{},
       SURGE_LAMBDA(int i) {
@@ -269,31 +305,34 @@ WallLoad wall_load(const DemView& v, const Material* mats, const Plane* planes, 
         for (int k = 0; k < max_wall_slots; ++k) {
           const std::uint32_t partner = row[k].partner;
           if (partner == no_partner) continue;
-          Vec3 n{};
+          Vec3 n{}, at{};
           Real un = 0;
-          int material = 0;
+          int material = 0, body = -1;
           if ((partner & plane_partner) != 0) {
             const int pk = static_cast<int>(partner & ~plane_partner);
             if (pk != plane) continue;
             const Plane pl = planes[pk];
             n = pl.normal;
             un = ri - dot(xi - pl.point, pl.normal);
+            at = xi - n * (ri - un);
             material = pl.material;
+            body = pl.body;
           } else if ((partner & triangle_partner) != 0) {
             const int tk = static_cast<int>(partner & ~triangle_partner);
             const WallTriangle tr = tris[tk];
             if (tr.mesh != mesh) continue;
-            const Vec3 cp = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, xi).point;
-            const Real d = norm(xi - cp);
+            at = geometry::closest_point_on_triangle(tr.a, tr.b, tr.c, xi).point;
+            const Real d = norm(xi - at);
             if (!(d > 0)) continue;
-            n = (xi - cp) * (1 / d);
+            n = (xi - at) * (1 / d);
             un = ri - d;
             material = tr.material;
+            body = tr.body;
           } else {
             continue;
           }
           if (!(un > 0)) continue;
-          const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un);
+          const WallPair<L> w = wall_pair_input<L>(v, mats, i, material, n, un, wall_motion(bodies, body, at));
           const PairResult r = pair_terms<L>(w.in, w.law, springs_of(row[k]), Real(0));
           out.force -= r.force_a;
           out.moment -= cross(xi - about, r.force_a) + r.torque_a;
@@ -364,6 +403,7 @@ DemSolver::DemSolver(std::vector<Material> materials, std::vector<Plane> planes,
   for (auto& p : planes) p.normal = p.normal * (1 / norm(p.normal));
   n_planes_ = static_cast<int>(planes.size());
   par::upload(planes_, planes);
+  planes_host_ = std::move(planes);
 #if defined(SURGE_SIMD)
   set_pair_pass(par::simd_isa());
 #endif
@@ -403,7 +443,11 @@ void DemSolver::build_triangle_grid() {
   // triangle the sphere can touch.
   const double r = max_radius_;
   std::vector<Vec3d> blo, bhi;
-  for (const auto& t : triangles_host_) {
+  std::vector<std::uint32_t> still; // the grid's triangles (moving ones are tested by body)
+  for (std::size_t i = 0; i < triangles_host_.size(); ++i) {
+    const WallTriangle& t = triangles_host_[i];
+    if (t.body >= 0 && has_wall_bodies()) continue; // (before set_wall_bodies every wall stands)
+    still.push_back(static_cast<std::uint32_t>(i));
     Vec3d a(t.a), b(t.a);
     for (const Vec3& p : {t.b, t.c})
       for (int k = 0; k < 3; ++k) {
@@ -413,7 +457,11 @@ void DemSolver::build_triangle_grid() {
     blo.push_back(a - Vec3d{r, r, r});
     bhi.push_back(b + Vec3d{r, r, r});
   }
-  const geometry::BoxBuckets g = geometry::bucket_boxes(blo, bhi, 2 * r);
+  tri_grid_radius_ = max_radius_;
+  tri_grid_ = {};
+  if (still.empty()) return;
+  geometry::BoxBuckets g = geometry::bucket_boxes(blo, bhi, 2 * r);
+  for (auto& item : g.items) item = still[item]; // bucket k is the k-th still triangle
   par::upload(tri_start_, g.start);
   par::upload(tri_items_, g.items);
   tri_grid_.lo = Vec3(g.lo);
@@ -422,6 +470,160 @@ void DemSolver::build_triangle_grid() {
   tri_grid_.start = tri_start_.data();
   tri_grid_.items = tri_items_.data();
   tri_grid_radius_ = max_radius_;
+}
+
+namespace {
+template <class T>
+std::vector<T> by_id(const std::vector<T>& v, const std::vector<std::uint32_t>& id, int block = 1) {
+  std::vector<T> out(v.size());
+  for (std::size_t i = 0; i < id.size(); ++i)
+    for (int b = 0; b < block; ++b) out[id[i] * block + b] = v[i * block + b];
+  return out;
+}
+} // namespace
+
+void DemSolver::set_wall_bodies(const std::vector<RigidState>& placed) {
+  body_states_host_ = placed;
+  const std::size_t nb = placed.size();
+  // Planes: their body-frame point (the arm from the pivot) and normal as placed.
+  planes_ref_ = planes_host_;
+  for (auto& p : planes_ref_) {
+    if (p.body >= static_cast<int>(nb)) throw std::invalid_argument("wall plane of an unknown body");
+    if (p.body >= 0) p.point = p.point - placed[static_cast<std::size_t>(p.body)].pos;
+  }
+  // Triangles: grouped by body (CSR), with their vertices' arms; the reach of each body.
+  std::vector<std::uint32_t> start(nb + 1, 0), items;
+  std::vector<WallTriangle> ref;
+  std::vector<Real> reach(nb, 0);
+  for (std::size_t b = 0; b < nb; ++b) {
+    start[b] = static_cast<std::uint32_t>(items.size());
+    for (std::size_t k = 0; k < triangles_host_.size(); ++k) {
+      WallTriangle t = triangles_host_[k];
+      if (t.body != static_cast<int>(b)) continue;
+      for (Vec3* x : {&t.a, &t.b, &t.c}) {
+        *x = *x - placed[b].pos;
+        reach[b] = std::max(reach[b], norm(*x));
+      }
+      items.push_back(static_cast<std::uint32_t>(k));
+      ref.push_back(t);
+    }
+  }
+  start[nb] = static_cast<std::uint32_t>(items.size());
+  for (const auto& t : triangles_host_)
+    if (t.body >= static_cast<int>(nb)) throw std::invalid_argument("wall triangle of an unknown body");
+  par::upload(body_start_, start);
+  par::upload(body_items_, items);
+  par::upload(body_ref_, ref);
+  par::upload(body_reach_, reach);
+  wall_react_.resize(static_cast<std::size_t>(n_) * max_wall_slots);
+  par::fill(wall_react_, WallReaction{});
+  body_loads_.assign(nb, WallLoadD{});
+  tri_grid_radius_ = -1; // the grid holds the still triangles only
+  move_walls(placed);
+}
+
+void DemSolver::move_walls(const std::vector<RigidState>& states) {
+  if (states.size() != body_states_host_.size()) throw std::invalid_argument("move_walls: another number of bodies");
+  body_states_host_ = states;
+  par::upload(body_states_, states);
+  bool planes_move = false;
+  for (std::size_t k = 0; k < planes_host_.size(); ++k) {
+    const Plane& r = planes_ref_[k];
+    if (r.body < 0) continue;
+    const RigidState& st = states[static_cast<std::size_t>(r.body)];
+    planes_host_[k].point = rigid_point(st, r.point).pos;
+    planes_host_[k].normal = rotate(st.q, r.normal);
+    planes_move = true;
+  }
+  if (planes_move) par::upload(planes_, planes_host_);
+  const auto n = static_cast<int>(body_items_.size());
+  if (n == 0) return;
+  const WallTriangle* ref = body_ref_.data();
+  const std::uint32_t* items = body_items_.data();
+  const RigidState* st = body_states_.data();
+  WallTriangle* tris = triangles_.data();
+  par::parallel_for(
+      n, SURGE_LAMBDA(int k) {
+        WallTriangle t = ref[k];
+        const RigidState& s = st[t.body];
+        t.a = rigid_point(s, t.a).pos;
+        t.b = rigid_point(s, t.b).pos;
+        t.c = rigid_point(s, t.c).pos;
+        tris[items[k]] = t;
+      });
+}
+
+WallBodiesView DemSolver::bodies_view() {
+  WallBodiesView b;
+  if (body_states_host_.empty()) return b;
+  b.n = static_cast<int>(body_states_host_.size());
+  b.state = body_states_.data();
+  b.reach = body_reach_.data();
+  b.start = body_start_.data();
+  b.items = body_items_.data();
+  return b;
+}
+
+// The body a wall contact's partner belongs to, or -1 (a still wall, an empty slot).
+SURGE_HD inline int partner_body(std::uint32_t partner, const Plane* planes, const WallTriangle* tris) {
+  if (partner == no_partner) return -1;
+  if ((partner & plane_partner) != 0) return planes[partner & ~plane_partner].body;
+  if ((partner & triangle_partner) != 0) return tris[partner & ~triangle_partner].body;
+  return -1;
+}
+
+// Minus the spheres' wall reactions of this step, per body: in sphere id order and in
+// double, at the spheres' positions before they move (those the step's contacts used).
+// Only the spheres touching a body are copied to the host (flagged, counted by a scan and
+// gathered on the device): a few among many.
+void DemSolver::sum_body_loads() {
+  const DemView v = view();
+  const Plane* planes = planes_.data();
+  const WallTriangle* tris = triangles_.data();
+  const WallReaction* react = wall_react_.data();
+  tmpu_.resize(static_cast<std::size_t>(n_));
+  std::uint32_t* flag = tmpu_.data();
+  par::parallel_for(
+      n_, SURGE_LAMBDA(int i) {
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
+        std::uint32_t touches = 0;
+        for (int k = 0; k < max_wall_slots; ++k) touches |= partner_body(row[k].partner, planes, tris) >= 0 ? 1U : 0U;
+        flag[i] = touches;
+      });
+  body_at_.resize(static_cast<std::size_t>(n_));
+  const std::uint32_t count = algo::exclusive_scan(flag, body_at_.data(), n_);
+  body_contacts_.resize(count);
+  const std::uint32_t* at = body_at_.data();
+  BodyContact* out = body_contacts_.data();
+  par::parallel_for(
+      n_, SURGE_LAMBDA(int i) {
+        const std::uint32_t id = v.id[i];
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(id) * max_wall_slots;
+        bool touches = false;
+        for (int k = 0; k < max_wall_slots; ++k) touches = touches || partner_body(row[k].partner, planes, tris) >= 0;
+        if (!touches) return;
+        BodyContact c;
+        c.id = id;
+        c.pos = v.pos[i];
+        for (int k = 0; k < max_wall_slots; ++k) {
+          c.body[k] = partner_body(row[k].partner, planes, tris);
+          c.react[k] = react[static_cast<std::size_t>(id) * max_wall_slots + k];
+        }
+        out[at[i]] = c;
+      });
+  std::vector<BodyContact> list = par::download(body_contacts_);
+  std::sort(list.begin(), list.end(), [](const BodyContact& a, const BodyContact& b) { return a.id < b.id; });
+  std::vector<WallLoadD> loads(body_states_host_.size());
+  for (const BodyContact& c : list)
+    for (int k = 0; k < max_wall_slots; ++k) {
+      if (c.body[k] < 0) continue;
+      WallLoadD& l = loads[static_cast<std::size_t>(c.body[k])];
+      const Vec3d f(c.react[k].force);
+      l.force -= f;
+      l.moment -= cross(Vec3d(c.pos) - Vec3d(body_states_host_[static_cast<std::size_t>(c.body[k])].pos), f) +
+                  Vec3d(c.react[k].torque);
+    }
+  body_loads_ = std::move(loads);
 }
 
 void DemSolver::set_spheres(const std::vector<Sphere>& s) {
@@ -583,9 +785,13 @@ void DemSolver::step(Real dt) {
     with_contact_law(law_index_, [&](auto law) {
       using L = decltype(law);
       if (!run_batched(batched_, n_, v, dt)) detail::pair_pass<L>(v, dt);
-      detail::sphere_pass<L>(
-          v, detail::WallsView{materials_.data(), planes_.data(), n_planes_, triangles_.data(), tri_grid_}, dt);
+      detail::sphere_pass<L>(v,
+                             detail::WallsView{materials_.data(), planes_.data(), n_planes_, triangles_.data(),
+                                               tri_grid_, bodies_view(),
+                                               has_wall_bodies() ? wall_react_.data() : nullptr},
+                             dt);
     });
+    if (has_wall_bodies()) sum_body_loads();
   }
   {
     const auto t = par::timed(par::Phase::DemIntegrate);
@@ -735,16 +941,6 @@ void DemSolver::rigid_states(par::Buffer<RigidState>& out) {
       });
 }
 
-namespace {
-template <class T>
-std::vector<T> by_id(const std::vector<T>& v, const std::vector<std::uint32_t>& id, int block = 1) {
-  std::vector<T> out(v.size());
-  for (std::size_t i = 0; i < id.size(); ++i)
-    for (int b = 0; b < block; ++b) out[id[i] * block + b] = v[i * block + b];
-  return out;
-}
-} // namespace
-
 long DemSolver::bond_touching(Real gap) {
   if (!(gap < skin_)) { // the list must hold every pair within the gap
     skin_ = 2 * gap;
@@ -763,7 +959,8 @@ WallLoad DemSolver::wall_load(int plane, int mesh, Vec3 about) {
   const DemView v = view();
   WallLoad out;
   with_contact_law(law_index_, [&](auto law) {
-    out = detail::wall_load<decltype(law)>(v, materials_.data(), planes_.data(), triangles_.data(), plane, mesh, about);
+    out = detail::wall_load<decltype(law)>(v, materials_.data(), planes_.data(), triangles_.data(), bodies_view(),
+                                           plane, mesh, about);
   });
   return out;
 }

@@ -35,6 +35,7 @@ namespace surge::dem {
 struct Plane {
   Vec3 point{}, normal{0, 0, 1};
   int material = 0;
+  int body = -1; // >= 0: the plane moves with that wall body (set_wall_bodies), else it stands
 };
 
 // A wall triangle (from an STL mesh). Triangles of one mesh form one smooth surface:
@@ -43,6 +44,14 @@ struct WallTriangle {
   Vec3 a{}, b{}, c{};
   int mesh = 0;
   int material = 0;
+  int body = -1; // >= 0: the triangle moves with that wall body, else it stands (in the grid)
+};
+
+// A sphere's reaction from one wall contact slot (bodies only): the force on the sphere
+// and the torque about its centre, as the step applied them; the wall body feels minus
+// these (about its pivot: minus (x_sphere - pivot) x force minus the torque).
+struct WallReaction {
+  Vec3 force{}, torque{};
 };
 
 // The wall triangles a sphere may touch, by the cell of its centre: each cell lists (in
@@ -66,6 +75,22 @@ struct TriangleGridView {
     const int cell = (c[2] * n[1] + c[1]) * n[0] + c[0];
     begin = start[cell];
     end = start[cell + 1];
+  }
+};
+
+// The walls that move, as the kernels see them: each body's state, reach (its farthest
+// vertex from the pivot) and triangles (CSR by body).
+struct WallBodiesView {
+  int n = 0;
+  const RigidState* state = nullptr;
+  const Real* reach = nullptr;
+  const std::uint32_t* start = nullptr;
+  const std::uint32_t* items = nullptr;
+  // Whether sphere (x, r) may touch a triangle of body b.
+  SURGE_HD bool near(int b, const Vec3& x, Real r) const {
+    const Real d = reach[b] + r;
+    const Vec3 e = x - state[b].pos;
+    return start[b + 1] > start[b] && dot(e, e) < d * d;
   }
 };
 
@@ -101,6 +126,9 @@ struct PairForce {
 // Force and moment the spheres exert on a wall (a gauge).
 struct WallLoad {
   Vec3 force{}, moment{};
+};
+struct WallLoadD {
+  Vec3d force{}, moment{};
 };
 struct SumWallLoads {
   SURGE_HD WallLoad operator()(const WallLoad& a, const WallLoad& b) const {
@@ -166,6 +194,17 @@ public:
   // Force and moment (about `about`) of the spheres on plane `plane` (index among the
   // planes, or -1) or on the triangles of mesh `mesh` (or -1), from the current contacts.
   [[nodiscard]] WallLoad wall_load(int plane, int mesh, Vec3 about);
+  // Walls that move (issue 34): the planes and triangles whose `body` is k follow body k's
+  // rigid state. `placed`: each body's state as the walls were given (its pivot there, no
+  // rotation); call after set_spheres and set_wall_triangles. move_walls places them for
+  // new states (pivot, orientation, velocities: the spheres feel the wall's velocity at
+  // the contact point); each step then sums the spheres' reactions on every body
+  // (body_loads: force, and moment about the pivot of the last move_walls), exactly the
+  // negatives of what the spheres received, in sphere id order and in double.
+  void set_wall_bodies(const std::vector<RigidState>& placed);
+  void move_walls(const std::vector<RigidState>& states);
+  [[nodiscard]] const std::vector<WallLoadD>& body_loads() const { return body_loads_; }
+  [[nodiscard]] bool has_wall_bodies() const { return !body_states_host_.empty(); }
   // Bonds broken since the start.
   [[nodiscard]] long broken_bonds() const;
   // dt = factor * the contact law's smallest time scale over the spheres (linear spring:
@@ -248,6 +287,28 @@ private:
   TriangleGridView tri_grid_{};
   Real tri_grid_radius_ = -1;
   void build_triangle_grid();
+  // Moving walls: each body's state (host and device), its triangles (CSR by body, their
+  // indices and body-frame arms from the pivot) and reach (the farthest vertex from the
+  // pivot); the planes' body-frame arms; the reactions per sphere wall slot; the loads.
+  std::vector<RigidState> body_states_host_;
+  par::Buffer<RigidState> body_states_;
+  std::vector<Plane> planes_host_, planes_ref_;
+  par::Buffer<std::uint32_t> body_start_, body_items_;
+  par::Buffer<WallTriangle> body_ref_;
+  par::Buffer<Real> body_reach_;
+  par::Buffer<WallReaction> wall_react_;
+  // A sphere touching a body, for the loads' sum: its id, position and wall slots.
+  struct BodyContact {
+    std::uint32_t id;
+    Vec3 pos;
+    int body[max_wall_slots];
+    WallReaction react[max_wall_slots];
+  };
+  par::Buffer<std::uint32_t> body_at_;
+  par::Buffer<BodyContact> body_contacts_;
+  std::vector<WallLoadD> body_loads_;
+  void sum_body_loads();
+  [[nodiscard]] WallBodiesView bodies_view();
   Vec3 gravity_{};
   Real local_damping_ = 0;
   int law_index_ = 0;                    // the contact law, an index into ContactLaws

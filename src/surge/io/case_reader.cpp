@@ -278,7 +278,31 @@ int material_of(const Reader& r, const YAML::Node& n, const std::string& path, c
   r.fail(n["material"], path + ".material", "no DEM material named '" + name + "'");
 }
 
-DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::string& path, const DemConfig& dem) {
+MotionSpec parse_motion(const Reader& r, const YAML::Node& m, const std::string& path, const Case& c);
+BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& path, bool solid);
+
+// A DEM wall's motion: a law, a free body (a closed mesh) or the motion of a moving SPH
+// wall (`follows`), one of them.
+void parse_dem_wall_motion(const Reader& r, const YAML::Node& w, const std::string& path, const Case& c,
+                           DemWallSpec& ws) {
+  const bool m = w["motion"].IsDefined(), b = w["body"].IsDefined(), f = w["follows"].IsDefined();
+  if (int(m) + int(b) + int(f) > 1)
+    r.fail(w, path, "a DEM wall moves by one of a law (motion), freely (body) or with an SPH wall (follows)");
+  if ((m || b || f) && ws.terrain) r.fail(w, path, "a terrain does not move; give the moving part its own wall");
+  if (m) ws.motion = parse_motion(r, w["motion"], path + ".motion", c);
+  if (b) ws.body = parse_body(r, w["body"], path + ".body", ws.is_mesh);
+  if (!f) return;
+  ws.follows = r.as<std::string>(w["follows"], path + ".follows");
+  const auto sw = std::find_if(c.walls.begin(), c.walls.end(), [&](const WallSpec& x) { return x.name == ws.follows; });
+  if (sw == c.walls.end()) r.fail(w["follows"], path + ".follows", "no wall named '" + ws.follows + "'");
+  if (!sw->moves())
+    r.fail(w["follows"], path + ".follows",
+           "the wall '" + ws.follows +
+               "' does not move (give it a motion or a body; a still DEM wall needs no follows)");
+}
+
+DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::string& path, const Case& c) {
+  const DemConfig& dem = c.dem;
   r.check_keys(w, path, keys_under("dem.walls[]"));
   DemWallSpec ws;
   read_fields(r, w, path, dem_wall_fields(), ws);
@@ -297,6 +321,7 @@ DemWallSpec parse_dem_wall(const Reader& r, const YAML::Node& w, const std::stri
     ws.terrain = w["terrain"].IsDefined();
     ws.mesh_path = resolve_file(r, w[key], path + "." + key, "file ");
   }
+  parse_dem_wall_motion(r, w, path, c, ws);
   return ws;
 }
 
@@ -362,7 +387,7 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
     dem.materials.push_back(parse_material(r, m, path, dem.materials));
   });
   for_each_item(r, d, "dem.walls", "expected a list of walls", [&](const YAML::Node& w, const std::string& path) {
-    dem.walls.push_back(parse_dem_wall(r, w, path, dem));
+    dem.walls.push_back(parse_dem_wall(r, w, path, c));
   });
   for_each_item(
       r, d, "dem.packs", "expected a list of sphere packs",
@@ -450,7 +475,9 @@ MotionSpec parse_motion(const Reader& r, const YAML::Node& m, const std::string&
 }
 
 // walls[].body: a free rigid body, a solid box or a closed mesh with a mass or a density.
-BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& path, const WallSpec& ws) {
+// solid: the wall is a solid box or a closed mesh (the reader cannot tell a closed mesh
+// from an open one; mass_properties refuses one that encloses no volume).
+BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& path, bool solid) {
   r.check_keys(b, path, keys_under("walls[].body"));
   BodySpec s;
   s.free = true;
@@ -458,8 +485,7 @@ BodySpec parse_body(const Reader& r, const YAML::Node& b, const std::string& pat
   read_fields(r, b, path, body_fields(), s);
   if ((s.mass > 0) == (s.density > 0))
     r.fail(b, path, "a free body needs its mass or its density (one of them, positive)");
-  if (ws.terrain || (!ws.is_mesh && !ws.solid))
-    r.fail(b, path, "a free body is a solid box (solid: true) or a closed mesh, not a tank or a terrain");
+  if (!solid) r.fail(b, path, "a free body is a solid box (solid: true) or a closed mesh, not a tank or a terrain");
   if (s.constraint == "line" && !(norm(s.direction) > 0))
     r.fail(b["direction"], path + ".direction", "must not be zero");
   if (s.constraint == "line" && norm(s.spin) > 0)
@@ -508,7 +534,7 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
   if (w["body"].IsDefined()) {
     if (w["motion"].IsDefined())
       r.fail(w["body"], path + ".body", "a wall moves either by a law (motion) or freely (body), not both");
-    ws.body = parse_body(r, w["body"], path + ".body", ws);
+    ws.body = parse_body(r, w["body"], path + ".body", !ws.terrain && (ws.is_mesh || ws.solid));
   }
   return ws;
 }
@@ -621,7 +647,7 @@ GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& p
   case GaugeType::Body: {
     gs.wall = r.require<std::string>(g, path, "wall");
     const auto w = std::find_if(c.walls.begin(), c.walls.end(), [&](const WallSpec& x) { return x.name == gs.wall; });
-    if (w == c.walls.end()) r.fail(g["wall"], path + ".wall", "no wall named '" + gs.wall + "'");
+    if (w == c.walls.end()) break; // a DEM wall's, checked once the DEM walls are read
     if (!w->moves())
       r.fail(g["wall"], path + ".wall", "the wall '" + gs.wall + "' does not move (a force gauge reads a still wall)");
     break;
@@ -698,11 +724,24 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
       r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall",
              "no DEM wall named '" + g.wall + "' (give the wall a name: under dem.walls)");
   }
+  for (std::size_t i = 0; i < c.gauges.size(); ++i) {
+    const GaugeSpec& g = c.gauges[i];
+    if (g.type != GaugeType::Body || c.wall_named(g.wall)) continue;
+    const DemWallSpec* w = c.dem_wall_named(g.wall);
+    if (!w)
+      r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall", "no wall named '" + g.wall + "'");
+    if (!w->motion.moves() && !w->body.free)
+      r.fail(root["gauges"][i]["wall"], "gauges." + std::to_string(i) + ".wall",
+             "the DEM wall '" + g.wall + "' " +
+                 (w->follows.empty() ? "does not move (a dem_wall gauge reads a still wall)"
+                                     : "follows '" + w->follows + "': name that wall"));
+  }
   if (c.dem.active() && c.fluid.empty())
     for (std::size_t i = 0; i < c.gauges.size(); ++i)
-      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall)
+      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall &&
+          c.gauges[i].type != GaugeType::Body)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
-               "this gauge measures the water and a DEM-only case has none; use sphere or dem_wall gauges");
+               "this gauge measures the water and a DEM-only case has none; use sphere, dem_wall or body gauges");
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0))
@@ -952,7 +991,11 @@ void write_dem(YAML::Emitter& e, const DemConfig& d) {
       write_vec(e, w.normal);
       e << YAML::EndMap;
     }
-    e << YAML::Key << "material" << YAML::Value << material(w.material) << YAML::EndMap;
+    e << YAML::Key << "material" << YAML::Value << material(w.material);
+    if (w.motion.moves()) write_motion(e, w.motion);
+    if (w.body.free) write_section(e, "body", body_fields(), w.body);
+    if (!w.follows.empty()) e << YAML::Key << "follows" << YAML::Value << w.follows;
+    e << YAML::EndMap;
   }
   e << YAML::EndSeq << YAML::Key << "packs" << YAML::Value << YAML::BeginSeq;
   for (const auto& pk : d.packs) {

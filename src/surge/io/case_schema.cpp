@@ -466,6 +466,13 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
                "the ground from an elevation grid, cropped to the domain"});
   k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
+  k.push_back({"dem.walls[].motion", "mapping", "", "", "as walls[].motion",
+               "a prescribed motion of the plane or mesh (the keys of walls[].motion); the spheres feel its velocity"});
+  k.push_back({"dem.walls[].body", "mapping", "", "", "a closed mesh; as walls[].body",
+               "a free rigid body moved by the spheres' contact forces and gravity (the keys of walls[].body)"});
+  k.push_back({"dem.walls[].follows", "text", "", "", "a moving wall's name",
+               "moves with that SPH wall (its law or free body): one solid seen by water and spheres; the "
+               "spheres' forces on it join the water's"});
   k.push_back({"dem.packs", "list", "", "", "", "sphere packs"});
   k.push_back({"dem.packs[].box", "{min, max}", "", "m", "inside the domain", "a lattice (or random pack) in a box"});
   k.push_back({"dem.packs[].mesh", "file", "", "", "closed STL", "a pack inside a closed mesh"});

@@ -1,4 +1,5 @@
 #include "surge/sim/dem_setup.hpp"
+#include "surge/sim/moving_bodies.hpp"
 
 #include "surge/core/error.hpp"
 #include "surge/geometry/slide_body.hpp"
@@ -161,15 +162,17 @@ DemSetup dem_setup(const Case& c) {
   }
   check_contact_law(c, s);
   int mesh_index = 0;
-  for (const auto& w : c.dem.walls) {
+  for (std::size_t k = 0; k < c.dem.walls.size(); ++k) {
+    const DemWallSpec& w = c.dem.walls[k];
+    const int body = dem_wall_body(c, k); // moving walls: their body (sim/moving_bodies.hpp)
     if (!w.is_mesh) {
       s.wall_index.emplace_back(static_cast<int>(s.planes.size()), -1);
-      s.planes.push_back({local(w.point), Vec3(w.normal * (1.0 / norm(w.normal))), w.material});
+      s.planes.push_back({local(w.point), Vec3(w.normal * (1.0 / norm(w.normal))), w.material, body});
       continue;
     }
     s.wall_index.emplace_back(-1, mesh_index);
     for (const auto& t : geometry::load_surface(w.mesh_path, w.terrain, c.domain).tris)
-      s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material});
+      s.triangles.push_back({local(t.a), local(t.b), local(t.c), mesh_index, w.material, body});
     ++mesh_index;
   }
   for (const auto& pk : c.dem.packs) {

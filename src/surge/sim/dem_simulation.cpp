@@ -10,6 +10,7 @@
 #include "surge/io/checkpoint.hpp"
 #include "surge/io/vtk_writer.hpp"
 #include "surge/sim/dem_setup.hpp"
+#include "surge/sim/moving_bodies.hpp"
 #include "surge/sim/run_loop.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/simulation.hpp"
@@ -31,6 +32,7 @@ using Clock = std::chrono::steady_clock;
 int check_dem(const Case& c) {
   const DemSetup s = dem_setup(c);
   auto solver = make_dem_solver(c, s);
+  const MovingBodies bodies(c, nullptr); // refuses a motion that leaves the domain
   const double dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
   const double steps = c.time.end / dt;
   std::printf("case        %s (%s), DEM only\n", c.name.c_str(), c.source.c_str());
@@ -44,6 +46,7 @@ int check_dem(const Case& c) {
   const char* scale = "";
   dem::with_contact_law(s.contact_law, [&](auto law) { scale = decltype(law)::time_scale_name; });
   print_slides(c, s);
+  print_moving_walls(c, bodies);
   std::printf("contact     %s\n", c.dem.contact.c_str());
   std::printf("time step   DEM dt = %.3g s (dt_factor %g x the smallest %s), about %.3g steps to t = %g s\n", dt,
               c.dem.dt_factor, scale, steps, c.time.end);
@@ -61,7 +64,7 @@ namespace {
 class DemStepper final : public Stepper {
 public:
   DemStepper(const Case& c, const RunOptions& opt, const io::Checkpoint* ck)
-      : c_(c), setup_(dem_setup(c)), solver_(make_dem_solver(c, setup_)), out_(opt.out_dir),
+      : c_(c), setup_(dem_setup(c)), solver_(make_dem_solver(c, setup_)), bodies_(c, nullptr), out_(opt.out_dir),
         pvd_((out_ / "spheres.pvd").string()) {
     check_sphere_gauges(c, setup_.spheres.size());
     bonds_ = setup_.bonded ? solver_.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
@@ -77,16 +80,20 @@ public:
       } catch (const std::invalid_argument& e) {
         throw InputError(path, 0, "dem", std::string(e.what()) + "; restart with the case.yaml of that run");
       }
+      bodies_.restore(ck->body_state, path);
       steps_ = ck->steps;
     }
+    bodies_.attach(solver_, ck ? ck->time : 0.0); // the moving walls where they are at the start
     if (!root()) return;
     std::filesystem::create_directories(out_ / "particles");
     io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
   }
 
   double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
-    (void)dt_max, (void)t, (void)failure; // non-finite states are caught at outputs
-    solver_.step(dt_);                    // a fixed step: outputs fall on the first step at or after their time
+    (void)dt_max, (void)failure; // non-finite states are caught at outputs
+    solver_.step(dt_);           // a fixed step: outputs fall on the first step at or after their time
+    const auto dt = static_cast<double>(dt_);
+    bodies_.advance(solver_, dt, t + dt); // the moving walls: free bodies under the spheres' loads
     ++steps_;
     if (domain::comm::size() > 1) {
       double flags[2] = {stop ? 1.0 : 0.0, checkpoint_due ? 1.0 : 0.0};
@@ -95,7 +102,7 @@ public:
       checkpoint_due = flags[1] > 0;
     }
     checkpoint_due = checkpoint_due && solver_.finite(); // never a checkpoint of a diverged state
-    return static_cast<double>(dt_);
+    return dt;
   }
 
   [[nodiscard]] bool root() const override { return domain::comm::rank() == 0; }
@@ -106,13 +113,13 @@ public:
     for (const auto& g : c_.gauges) n.push_back(g.name);
     return n;
   }
-  // Sphere and DEM-wall gauges (the only kinds a DEM-only case has): no fluid force.
+  // Sphere, DEM-wall and body gauges (the only kinds a DEM-only case has): no fluid force.
   std::vector<double> sample(double t) override {
-    (void)t;
     const auto sp = solver_.spheres();
     std::vector<double> row;
     for (const auto& g : c_.gauges)
       row.push_back(g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, setup_, solver_)
+                    : g.type == GaugeType::Body  ? bodies_.dem_gauge_value(g, t)
                                                  : sphere_gauge_value(g, sp, {}, {}, setup_.origin));
     return row;
   }
@@ -132,7 +139,10 @@ public:
     return true;
   }
 
-  void save(io::Checkpoint& k) override { k.dem_state = solver_.save(); }
+  void save(io::Checkpoint& k) override {
+    k.dem_state = solver_.save();
+    k.body_state = bodies_.save();
+  }
 
   void restored(const std::vector<double>& frame_times) override {
     std::vector<std::pair<double, std::string>> entries;
@@ -177,6 +187,7 @@ private:
   const Case& c_;
   DemSetup setup_;
   dem::DemSolver solver_;
+  MovingBodies bodies_; // DEM walls with a motion
   std::filesystem::path out_;
   io::PvdCollection pvd_;
   long bonds_ = 0, steps_ = 0;

@@ -188,32 +188,12 @@ void print_terrain_warnings(const Case& c, const WallSpec& w) {
 }
 
 // surge check's line per moving wall: its law and where it is at time.end, or its mass.
-void print_moving_walls(const Case& c, const MovingBodies& bodies) {
-  for (std::size_t k = 0; k < bodies.size(); ++k) {
-    const auto& m = bodies.wall(k);
-    if (const motion::FreeBody* f = bodies.free_body(k)) {
-      std::printf("moving      wall '%s' (%u particles): a free body of %.4g kg (%s), centre of mass [%g, %g, %g] m\n",
-                  c.walls[m.wall].name.c_str(), m.last - m.first, f->mass(),
-                  c.walls[m.wall].body.constraint == "line" ? "along a line" : "6 degrees of freedom", m.pivot.x,
-                  m.pivot.y, m.pivot.z);
-      continue;
-    }
-    const motion::Pose end = bodies.pose(k, c.time.end);
-    std::printf(
-        "moving      wall '%s' (%u particles): %s from t = %g s, pivot [%g, %g, %g] m, at t = %g s moved by [%.4g, "
-        "%.4g, %.4g] m, speed %.4g m/s\n",
-        c.walls[m.wall].name.c_str(), m.last - m.first, c.walls[m.wall].motion.law.c_str(),
-        c.walls[m.wall].motion.start, m.pivot.x, m.pivot.y, m.pivot.z, c.time.end, end.shift.x, end.shift.y,
-        end.shift.z, norm(end.vel));
-  }
-}
-
 } // namespace
 
 int check(const Case& c) {
   if (c.dem.active() && !c.coupled()) return check_dem(c);
   auto init = sph::build_initial_state(c);
-  const MovingBodies bodies(c, init); // refuses a motion that leaves the domain
+  const MovingBodies bodies(c, &init); // refuses a motion that leaves the domain
   std::optional<CoupledParts> cp;
   if (c.coupled()) cp.emplace(c, init);
   const double n_body = cp ? static_cast<double>(cp->coupling->n_body()) : 0.0;
@@ -300,7 +280,7 @@ public:
   // `ck`: the checkpoint of a restart (its particles are moved out). Everything that can
   // fail on input happens before the output folder is touched.
   SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
-      : c_(c), opt_(opt), init_(sph::build_initial_state(c)), bodies_(c, init_), cp_(coupled_parts(c, init_)),
+      : c_(c), opt_(opt), init_(sph::build_initial_state(c)), bodies_(c, &init_), cp_(coupled_parts(c, init_)),
         solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr), gauges_(c, init_),
         hazard_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
         dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
@@ -321,6 +301,7 @@ public:
       // The moving walls placed at the checkpoint's time, as the straight run placed them
       // (their positions the checkpoint's, bit for bit; ghost offsets and faces turned).
       bodies_.place(solver_, ck->time);
+      if (cp_) bodies_.attach(*cp_->dem, ck->time);
       // The body particles' mDBC ghost nodes turn with the restored spheres (the positions
       // placed again are the checkpoint's, bit for bit).
       if (cp_) cp_->coupling->place_bodies(solver_, *cp_->dem);
@@ -332,8 +313,11 @@ public:
         walls_pvd_.add(0.0, "particles/walls_0000.vtp");
       }
       dist_.start(init_.particles);
-      bodies_.place(solver_, 0.0);                               // their velocities at t = 0
-      if (cp_) cp_->coupling->reduce_forces(solver_, *cp_->dem); // the fluid force at t = 0, for the gauges
+      bodies_.place(solver_, 0.0); // their velocities at t = 0
+      if (cp_) {
+        bodies_.attach(*cp_->dem, 0.0);
+        cp_->coupling->reduce_forces(solver_, *cp_->dem); // the fluid force at t = 0, for the gauges
+      }
     }
     // The initial particles' host copy (37 B per particle or more) is not read again.
     init_.particles = {};
@@ -343,10 +327,17 @@ public:
     dist_.sync();
     sph::StepStats s = solver_.step(dt_max);
     dist_.stepped();
-    if (cp_) cp_->coupling->after_fluid_step(solver_, *cp_->dem, s.dt);
+    // Free bodies under the water's force of the step's rates (those the spheres touch hold
+    // it over the DEM's sub-steps, advancing with the spheres).
+    bodies_.advance(solver_, s.dt);
+    if (cp_) {
+      const double t0 = t;
+      cp_->coupling->after_fluid_step(solver_, *cp_->dem, s.dt,
+                                      [&](int k, double h) { bodies_.advance(*cp_->dem, h, t0 + (k + 1) * h); });
+    }
     t += s.dt;
-    bodies_.advance(solver_, s.dt); // free bodies under the water's force of the step's rates
-    bodies_.place(solver_, t);      // the run loop's new time, the same double
+    bodies_.place(solver_, t); // the run loop's new time, the same double
+    if (cp_) bodies_.place(*cp_->dem, t);
     dist_.combine(s, stop, checkpoint_due);
     for (Totals* x : {&tot_, &since_output_}) {
       x->removed_domain += s.removed_domain;
@@ -396,6 +387,7 @@ public:
     return gauges_.sample(
         solver_,
         [&](const GaugeSpec& g) {
+          if (g.type == GaugeType::Body) return bodies_.dem_gauge_value(g, t);
           return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, cp_->setup, *cp_->dem)
                                               : sphere_gauge_value(g, sp, ff, fm, init_.origin);
         },
@@ -418,9 +410,9 @@ public:
         io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
         spheres_pvd_->add(t, std::string("particles/") + name);
       }
-      if (bodies_.any()) write_walls(frame, t);
+      if (bodies_.sph_count() > 0) write_walls(frame, t);
       if (hazard_.enabled()) write_hazard();
-      for (std::size_t k = 0; k < bodies_.size(); ++k)
+      for (std::size_t k = 0; k < bodies_.sph_count(); ++k)
         leaks_.set_pose(bodies_.wall(k).wall, bodies_.wall(k).pivot, bodies_.pose(k, t));
       const LeakCount in_walls = leaks_.count(host_, init_.origin);
       tot_.leaks.add(in_walls, t);
@@ -460,7 +452,7 @@ public:
       entries.emplace_back(frame_times[static_cast<std::size_t>(k)], name);
     }
     fluid_pvd_.restore(entries);
-    if (bodies_.any()) { // the walls of every frame
+    if (bodies_.sph_count() > 0) { // the walls of every frame
       auto walls = entries;
       for (auto& e : walls) e.second.replace(e.second.find("fluid_"), 6, "walls_");
       walls_pvd_.restore(walls);

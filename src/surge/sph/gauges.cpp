@@ -1,4 +1,5 @@
 #include "surge/sph/gauges.hpp"
+#include "surge/motion/body_reading.hpp"
 
 #include "surge/geometry/bed.hpp"
 #include "surge/geometry/terrain.hpp"
@@ -66,12 +67,14 @@ Gauges::Gauges(const Case& c, const InitialState& init) {
       points_host_.push_back(Vec3(g.at - o));
       pr.n_samples = 1;
     } else if (g.type == GaugeType::Force || g.type == GaugeType::Body) {
+      bool found = false;
       for (std::size_t w = 0; w < c.walls.size(); ++w)
         if (c.walls[w].name == g.wall) {
           pr.id0 = init.wall_ids[w].first;
           pr.id1 = init.wall_ids[w].second;
+          found = true;
         }
-      if (g.type == GaugeType::Body) pr.body = init.body_of(pr.id0);
+      if (g.type == GaugeType::Body) pr.body = found ? init.body_of(pr.id0) : -1; // -1: a DEM wall's (the caller's)
     }
     probes_.push_back(pr);
   }
@@ -146,7 +149,8 @@ std::vector<double> Gauges::sample(WcsphSolver& solver, const std::function<doub
           v = spec.component == "x" ? vel.x : spec.component == "y" ? vel.y : spec.component == "z" ? vel.z : norm(vel);
         }
       }
-    } else if (spec.type == GaugeType::Sphere || spec.type == GaugeType::DemWall) {
+    } else if (spec.type == GaugeType::Sphere || spec.type == GaugeType::DemWall ||
+               (spec.type == GaugeType::Body && pr.body < 0)) {
       v = sphere_value ? sphere_value(spec) : 0.0;
     } else if (spec.type == GaugeType::Body) {
       v = body_value(solver, pr, dist);
@@ -192,16 +196,8 @@ Gauges::Load Gauges::wall_load(WcsphSolver& solver, const Probe& pr, const Distr
 // moment about the pivot, or its tilt.
 double Gauges::body_value(WcsphSolver& solver, const Probe& pr, const Distribution& dist) {
   const RigidState s = bodies_.at(static_cast<std::size_t>(pr.body));
-  const std::string& c = pr.spec.component;
-  if (c == "tilt") { // the angle between the body's z axis, as placed, and z [degrees]
-    const double qx = s.q[1], qy = s.q[2];
-    return std::acos(std::fmax(-1.0, std::fmin(1.0, 1 - 2 * (qx * qx + qy * qy)))) * 180 / M_PI;
-  }
-  const int axis = c.back() - 'x';
-  if (c.size() == 1) return static_cast<double>(s.pos[axis]) + origin_[axis];
-  if (c[0] == 'v') return s.vel[axis];
-  const Load l = wall_load(solver, pr, dist, &s.pos);
-  return c[0] == 'f' ? l.force[axis] : l.moment[axis];
+  const Load l = motion::reads_load(pr.spec.component) ? wall_load(solver, pr, dist, &s.pos) : Load{};
+  return motion::body_reading(pr.spec.component, s, origin_, l.force, l.moment);
 }
 
 // What a wave gauge reads: the top of the water standing on the bed. The samples start at
