@@ -5,6 +5,7 @@
   plot_moving_walls.py solitary RUN_DIR OUT.png                     the piston's solitary wave at its gauges
   plot_moving_walls.py floating BOX_DIR CUBE_DIR OUT.png            the floating box and cube: draft and tilt
   plot_moving_walls.py slide RUN_DIR OUT.png                        the rigid wedge: its speed and the waves
+  plot_moving_walls.py boulder RUN_DIR OUT.png                      the block on gravel (DEM walls that move)
 
 NOGATE_DIR and GATE_DIR are the output folders of tests/python/test_dambreak_front.py
 (without and with `gate`), RUN_DIR that of cases/solitary_piston.yaml."""
@@ -95,5 +96,30 @@ def slide(run, out):
     fig.savefig(out, dpi=110)
 
 
+def boulder(run, out):
+    g = np.genfromtxt(os.path.join(run, "gauges.csv"), delimiter=",", names=True)
+    fig, (ax, bx, cx) = plt.subplots(3, 1, figsize=(7, 6.5), sharex=True)
+    ax.plot(g["time"], g["block_x"], "k", label="x of the centre")
+    ax.plot(g["time"], g["block_z"], "b", label="z of the centre")
+    ax.axhline(0.03 + 0.02, color="b", ls=":", lw=0.8, label="resting on the bed top (0.03 m + half height)")
+    ax.set_ylabel("m")
+    ax.legend(fontsize=8)
+    ax.set_title("Block (0.24 kg) thrown onto gravel (2,880 spheres of r = 5 mm), DEM only")
+    bx.plot(g["time"], g["block_vx"], "k", label="vx")
+    bx.plot(g["time"], g["block_vz"], "b", label="vz")
+    bx.set_ylabel("m/s")
+    bx.legend(fontsize=8)
+    weight = 2500 * 0.06 * 0.04 * 0.04 * 9.81
+    cx.plot(g["time"], g["block_fz"], "k", lw=0.8, label="fz of the spheres on the block")
+    cx.axhline(weight, color="r", ls=":", label=f"its weight, {weight:.3f} N")
+    cx.set_ylim(-1, 4 * weight)
+    cx.set_ylabel("N")
+    cx.set_xlabel("t [s]")
+    cx.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 if __name__ == "__main__":
-    {"front": front, "solitary": solitary, "floating": floating, "slide": slide}[sys.argv[1]](*sys.argv[2:])
+    {"front": front, "solitary": solitary, "floating": floating, "slide": slide,
+     "boulder": boulder}[sys.argv[1]](*sys.argv[2:])

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 using namespace surge;
@@ -145,6 +146,8 @@ TEST(DemMovingWalls, AFreeBodyHittingSpheresConservesMomentum) {
   Vec3d p1, l1;
   totals(p1, l1);
   const double p_scale = norm(p0), l_scale = norm(l0) + a * norm(p0);
+  std::printf("after %d steps: momentum change %.3g, angular momentum change %.3g (relative)\n", k,
+              norm(p1 - p0) / p_scale, norm(l1 - l0) / l_scale);
   EXPECT_LT(norm(p1 - p0) / p_scale, 1e-5) << p1.x << " " << p1.y << " " << p1.z;
   EXPECT_LT(norm(l1 - l0) / l_scale, 1e-5) << l1.x << " " << l1.y << " " << l1.z;
   // The collision happened: the body lost a good part of its momentum to the spheres.

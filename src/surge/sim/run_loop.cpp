@@ -4,6 +4,7 @@
 #include "surge/sim/run_support.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -56,7 +57,12 @@ public:
     while (t_ < c_.time.end - eps && failure.empty()) {
       if (stop_) break;
       if (c_.time.max_steps > 0 && s_.steps() >= c_.time.max_steps) break;
-      const double dt_max = std::min({next_out_, next_gauge_, c_.time.end}) - t_;
+      // An end within eps of an output or gauge time is that time, bit for bit: a run
+      // stopped there and restarted then steps exactly as the straight run did.
+      double end = c_.time.end;
+      for (const double x : {next_out_, next_gauge_})
+        if (std::fabs(x - c_.time.end) <= eps) end = x;
+      const double dt_max = std::min({next_out_, next_gauge_, end}) - t_;
       stop_ = opt_.stop && *opt_.stop;
       // Wall-clock checkpoints are collective (a gather): every process must agree to write one.
       bool checkpoint_due = wall_checkpoints_.due();
