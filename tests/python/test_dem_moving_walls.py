@@ -83,7 +83,7 @@ os.makedirs(WORK)
 for f in ("boulder_on_gravel.yaml", "boulder_block.stl"):
     shutil.copy(os.path.join(CASES, f), WORK)
 out = restarted_bitwise("boulder", os.path.join(WORK, "boulder_on_gravel.yaml"), 0.12, 0.08,
-                        ["gauges.csv", "particles/spheres_0006.vtp", "checkpoint.bin"])
+                        ["gauges.csv", "particles/spheres_0006.vtp", "particles/dem_walls_0006.vtp", "checkpoint.bin"])
 if out:
     g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
     landed = g["time"] > 0.08
@@ -125,10 +125,18 @@ gauges:
 open(os.path.join(WORK, "gate.yaml"), "w").write(GATE)
 box_stl(os.path.join(WORK, "gate.stl"), (0.15, 0, 0), (0.17, 0.06, 0.14))
 out = restarted_bitwise("gate", os.path.join(WORK, "gate.yaml"), 0.2, 0.14,
-                        ["gauges.csv", "particles/fluid_0010.vtp", "particles/spheres_0010.vtp", "checkpoint.bin"])
+                        ["gauges.csv", "particles/fluid_0010.vtp", "particles/spheres_0010.vtp",
+                         "particles/dem_walls_0010.vtp", "checkpoint.bin"])
 if out:
     shut = spheres(out, 5)  # t = 0.1 s: the gate has not moved yet
     check(shut[:, 0].max() < 0.15, f"no sphere passes the shut gate (largest x {shut[:, 0].max():.4f} m < 0.15)")
+    import vtk
+    r = vtk.vtkXMLPolyDataReader()
+    r.SetFileName(os.path.join(out, "particles", "dem_walls_0010.vtp"))
+    r.Update()
+    zmin = r.GetOutput().GetBounds()[4]
+    check(r.GetOutput().GetNumberOfPolys() == 12 and abs(zmin - 0.05) < 1e-6,
+          f"the frames show the DEM gate lifted with the SPH gate (12 triangles, bottom at {zmin:.6f} m = 0.05)")
     lifted = spheres(out, 10)  # t = 0.2 s: lifted by 5 cm
     check((lifted[:, 0] > 0.155).sum() > 0,
           f"spheres run out under the lifted gate ({(lifted[:, 0] > 0.155).sum()} beyond it at 0.2 s)")

@@ -17,6 +17,7 @@ import sys
 import numpy as np
 
 SURGE, WORK, CASES = sys.argv[1:4]
+COARSE = ["--set", "dp=0.0125"] if "--coarse" in sys.argv else []
 failures = []
 
 
@@ -31,11 +32,11 @@ os.makedirs(WORK)
 case = os.path.join(CASES, "floating_box.yaml")
 runs = {"box": ["--set", "time.end=1.0"],
         "cube": ["--set", "walls.1.box.min=[0.15,0.15,0.1]", "--set", "walls.1.box.max=[0.25,0.25,0.2]",
-                 "--set", "time.end=0.5"]}
+                 "--set", "time.end=0.6" if COARSE else "time.end=0.5"]}
 g = {}
 for name, extra in runs.items():
     out = os.path.join(WORK, name)
-    r = subprocess.run([SURGE, "run", case, "--out", out, "--quiet"] + extra, capture_output=True, text=True)
+    r = subprocess.run([SURGE, "run", case, "--out", out, "--quiet"] + extra + COARSE, capture_output=True, text=True)
     check(r.returncode == 0, f"{name} runs (exit {r.returncode}: {r.stderr[-300:]})")
     if r.returncode != 0:
         sys.exit(1)
@@ -53,7 +54,8 @@ print(f"box: draft {draft.mean():.5f} m over 0.5-1.0 s (H/2 = 0.05 m, {100 * (dr
 check(abs(draft.mean() / 0.05 - 1) <= 0.02, "the box rests at a draft of half its height within 2 %")
 check(b["tilt"].max() < 10 and b["tilt"][late].mean() < 3, "the box rocks back upright")
 c = g["cube"]
-print(f"cube: tilt {c['tilt'][c['time'] <= 0.5].max():.1f} deg by 0.5 s, {c['tilt'].max():.1f} deg by 0.5 s")
+print(f"cube: tilt {c['tilt'][c['time'] <= 0.5].max():.1f} deg by 0.5 s, {c['tilt'].max():.1f} deg by "
+      f"{c['time'][-1]:.1f} s")
 check(c["tilt"].max() > 20, "the cube turns away from upright (beyond 20 degrees)")
 print("FAILED: " + "; ".join(failures) if failures else "all passed")
 sys.exit(1 if failures else 0)

@@ -1,8 +1,8 @@
 """Distributed runs (MPI build): the same case on 1, 2 and 3 processes gives the same
 bits -- gauges, every particle file, the checkpoint -- on a dam break, on the coupled
 slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
-on Archimedes with mDBC and the symplectic integrator and on
-the DEM-only column;
+on Archimedes with mDBC and the symplectic integrator, on
+the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move);
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -134,6 +134,15 @@ check(r.returncode == 0, f"DEM-only column to t = 0.025 s on 3 processes (exit {
 r = mpi(1, ["restart", out, "--quiet", "--set", "time.end=0.05"])
 check(r.returncode == 0, f"DEM-only restart on 1 process (exit {r.returncode}: {r.stderr[-300:]})")
 same_files(col[1], out, "DEM-only column written by 3 processes, continued by 1, against 1 straight")
+
+# --- walls that move: a free floating box (its load summed over every process's wall
+# particles in id order) and the DEM-only block on gravel (a free DEM body)
+flo = runs_on([1, 3], "floating_box", os.path.join(CASES, "floating_box.yaml"),
+              ["--set", "time.end=0.02", "--set", "time.output_every=0.01"])
+same_files(flo[1], flo[3], "floating box (a free body), 1 and 3 processes")
+bo = runs_on([1, 3], "boulder", os.path.join(CASES, "boulder_on_gravel.yaml"),
+             ["--set", "time.end=0.08", "--set", "time.output_every=0.04"])
+same_files(bo[1], bo[3], "block on gravel (a free DEM body), 1 and 3 processes")
 
 # --- coupling.force_sum: per_sphere (per-process sphere sums added in rank order): equal to
 # one process to round-off (relative 1e-5), not necessarily bitwise; the fixed sphere leaves

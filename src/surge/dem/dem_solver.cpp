@@ -553,6 +553,14 @@ void DemSolver::move_walls(const std::vector<RigidState>& states) {
       });
 }
 
+std::vector<std::array<Vec3, 3>> DemSolver::moving_triangles() const {
+  std::vector<std::array<Vec3, 3>> out;
+  if (!has_wall_bodies()) return out;
+  for (const WallTriangle& t : par::download(triangles_))
+    if (t.body >= 0) out.push_back({t.a, t.b, t.c});
+  return out;
+}
+
 WallBodiesView DemSolver::bodies_view() {
   WallBodiesView b;
   if (body_states_host_.empty()) return b;

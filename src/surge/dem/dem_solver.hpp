@@ -25,6 +25,7 @@
 #include "surge/par/phase_timer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -205,6 +206,8 @@ public:
   void move_walls(const std::vector<RigidState>& states);
   [[nodiscard]] const std::vector<WallLoadD>& body_loads() const { return body_loads_; }
   [[nodiscard]] bool has_wall_bodies() const { return !body_states_host_.empty(); }
+  // The moving triangles where they are now (host copies; empty without moving walls).
+  [[nodiscard]] std::vector<std::array<Vec3, 3>> moving_triangles() const;
   // Bonds broken since the start.
   [[nodiscard]] long broken_bonds() const;
   // dt = factor * the contact law's smallest time scale over the spheres (linear spring:

@@ -39,12 +39,14 @@ namespace {
 // Builds a PolyData file of points: points first, then point-data arrays.
 class VtpBuilder {
 public:
-  // n points; lines: point-index pairs (a line cell each), for bond networks.
-  explicit VtpBuilder(std::size_t n, std::vector<std::int64_t> lines = {}) : lines_(std::move(lines)) {
+  // n points; lines: point-index pairs (a line cell each), for bond networks; triangles:
+  // point-index triples (a polygon each), for wall surfaces.
+  explicit VtpBuilder(std::size_t n, std::vector<std::int64_t> lines = {}, std::vector<std::int64_t> triangles = {})
+      : lines_(std::move(lines)), tris_(std::move(triangles)) {
     x_ << "<?xml version=\"1.0\"?>\n"
        << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
        << "<PolyData>\n<Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << lines_.size() / 2
-       << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+       << "\" NumberOfStrips=\"0\" NumberOfPolys=\"" << tris_.size() / 3 << "\">\n";
   }
   void points(const std::vector<double>& xyz) {
     x_ << "<Points>\n";
@@ -67,6 +69,14 @@ public:
       array("offsets", offsets, 1);
       x_ << "</Lines>\n";
     }
+    if (!tris_.empty()) {
+      std::vector<std::int64_t> offsets;
+      for (std::size_t k = 3; k <= tris_.size(); k += 3) offsets.push_back(static_cast<std::int64_t>(k));
+      x_ << "<Polys>\n";
+      array("connectivity", tris_, 1);
+      array("offsets", offsets, 1);
+      x_ << "</Polys>\n";
+    }
     x_ << "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
     std::string out = x_.str();
     out += blob_;
@@ -75,7 +85,7 @@ public:
   }
 
 private:
-  std::vector<std::int64_t> lines_;
+  std::vector<std::int64_t> lines_, tris_;
   std::ostringstream x_;
   std::string blob_;
 };
@@ -152,6 +162,19 @@ void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3
   b.array("material", s.material, 1);
   b.array("contacts", s.contacts, 1);
   b.array("id", s.id, 1);
+  b.write(path);
+}
+
+void write_triangles_vtp(const std::string& path, const std::vector<std::array<Vec3, 3>>& tris, const Vec3d& origin) {
+  std::vector<double> pos;
+  std::vector<std::int64_t> cells;
+  for (const auto& t : tris)
+    for (const Vec3& p : t) {
+      cells.push_back(static_cast<std::int64_t>(cells.size()));
+      push3(pos, origin + Vec3d(p));
+    }
+  VtpBuilder b(cells.size(), {}, std::move(cells));
+  b.points(pos);
   b.write(path);
 }
 

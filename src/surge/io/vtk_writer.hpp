@@ -1,5 +1,6 @@
 // VTK XML PolyData (.vtp) with raw binary appended data, and .pvd time collections.
 #pragma once
+#include <array>
 #include "surge/core/types.hpp"
 #include "surge/particles/particle_store.hpp"
 
@@ -24,6 +25,9 @@ struct SphereFrame {
 // Sphere centres with velocity, angular_velocity, radius, material, contacts, id, and
 // the intact bonds as lines.
 void write_spheres_vtp(const std::string& path, const SphereFrame& s, const Vec3d& origin);
+// Triangles (local coordinates; each its own three points) as polygons: the DEM's moving
+// walls in each frame.
+void write_triangles_vtp(const std::string& path, const std::vector<std::array<Vec3, 3>>& tris, const Vec3d& origin);
 
 // A horizontal grid of nx x ny nodes (x0 + i dx, y0 + j dy, z = 0), node j * nx + i, as VTK
 // ImageData (.vti) with one Float64 point array per name (NaN where a value is missing).

@@ -261,6 +261,28 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
   return f;
 }
 
+namespace {
+std::string dem_walls_name(std::size_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "particles/dem_walls_%04zu.vtp", frame);
+  return name;
+}
+} // namespace
+
+void DemWallFrames::write(const dem::DemSolver& solver, int frame, double t, const Vec3d& origin) {
+  if (!on_) return;
+  const std::string name = dem_walls_name(static_cast<std::size_t>(frame));
+  io::write_triangles_vtp((out_ / name).string(), solver.moving_triangles(), origin);
+  pvd_.add(t, name);
+}
+
+void DemWallFrames::restored(const std::vector<double>& frame_times) {
+  if (!on_) return;
+  std::vector<std::pair<double, std::string>> entries;
+  for (std::size_t k = 0; k < frame_times.size(); ++k) entries.emplace_back(frame_times[k], dem_walls_name(k));
+  pvd_.restore(entries);
+}
+
 double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver) {
   for (std::size_t w = 0; w < c.dem.walls.size(); ++w) {
     if (c.dem.walls[w].name != g.wall) continue;

@@ -6,6 +6,7 @@
 #include "surge/dem/dem_solver.hpp"
 #include "surge/io/vtk_writer.hpp"
 
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -47,6 +48,20 @@ void print_slides(const Case& c, const DemSetup& s);
 std::string no_bonds_warning(const Case& c, const DemSetup& s, long bonds);
 // The spheres' current state, by id, for write_spheres_vtp.
 io::SphereFrame sphere_frame(const dem::DemSolver& solver);
+// The DEM's moving meshes in every frame (particles/dem_walls_NNNN.vtp, dem_walls.pvd):
+// what a viewer shows of a free block or a gate the spheres meet. Off without them.
+class DemWallFrames {
+public:
+  DemWallFrames(const std::filesystem::path& out, bool enabled)
+      : out_(out), pvd_((out / "dem_walls.pvd").string()), on_(enabled) {}
+  void write(const dem::DemSolver& solver, int frame, double t, const Vec3d& origin);
+  void restored(const std::vector<double>& frame_times);
+
+private:
+  std::filesystem::path out_;
+  io::PvdCollection pvd_;
+  bool on_;
+};
 // Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.
 double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver);
 // Checks that every sphere gauge names an existing sphere.

@@ -65,7 +65,7 @@ class DemStepper final : public Stepper {
 public:
   DemStepper(const Case& c, const RunOptions& opt, const io::Checkpoint* ck)
       : c_(c), setup_(dem_setup(c)), solver_(make_dem_solver(c, setup_)), bodies_(c, nullptr), out_(opt.out_dir),
-        pvd_((out_ / "spheres.pvd").string()) {
+        pvd_((out_ / "spheres.pvd").string()), dem_walls_(out_, bodies_.moves_dem()) {
     check_sphere_gauges(c, setup_.spheres.size());
     bonds_ = setup_.bonded ? solver_.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
     dt_ = solver_.critical_dt(static_cast<Real>(c.dem.dt_factor));
@@ -136,6 +136,7 @@ public:
     std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
     io::write_spheres_vtp((out_ / "particles" / name).string(), f, setup_.origin);
     pvd_.add(t, std::string("particles/") + name);
+    dem_walls_.write(solver_, frame, t, setup_.origin);
     return true;
   }
 
@@ -152,6 +153,7 @@ public:
       entries.emplace_back(frame_times[k], name);
     }
     pvd_.restore(entries);
+    dem_walls_.restored(frame_times);
   }
 
   void write_summary(const std::string& status, int code, const std::string& message, const LoopClock& k) override {
@@ -190,6 +192,7 @@ private:
   MovingBodies bodies_; // DEM walls with a motion
   std::filesystem::path out_;
   io::PvdCollection pvd_;
+  DemWallFrames dem_walls_; // the moving meshes of every frame
   long bonds_ = 0, steps_ = 0;
   Real dt_ = 0;
 };

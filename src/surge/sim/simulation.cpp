@@ -287,7 +287,10 @@ public:
         walls_pvd_((out_ / "walls.pvd").string()), fluid_pvd_((out_ / "fluid.pvd").string()),
         dt_min_(c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c)),
         max_removed_(c.sph.max_removed_share * static_cast<double>(init_.n_fluid)) {
-    if (cp_) spheres_pvd_.emplace((out_ / "spheres.pvd").string());
+    if (cp_) {
+      spheres_pvd_.emplace((out_ / "spheres.pvd").string());
+      dem_walls_.emplace(out_, bodies_.moves_dem());
+    }
     if (ck) check_restart(*ck);
     if (root()) {
       std::filesystem::create_directories(out_ / "particles");
@@ -409,6 +412,7 @@ public:
         std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
         io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
         spheres_pvd_->add(t, std::string("particles/") + name);
+        dem_walls_->write(*cp_->dem, frame, t, init_.origin);
       }
       if (bodies_.sph_count() > 0) write_walls(frame, t);
       if (hazard_.enabled()) write_hazard();
@@ -462,6 +466,7 @@ public:
     if (cp_) {
       for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
       spheres_pvd_->restore(entries);
+      dem_walls_->restored(frame_times);
     }
   }
 
@@ -564,6 +569,7 @@ private:
   WallLeaks leaks_;
   io::PvdCollection walls_pvd_, fluid_pvd_;
   std::optional<io::PvdCollection> spheres_pvd_;
+  std::optional<DemWallFrames> dem_walls_; // the DEM's moving meshes of every frame
   particles::HostParticles host_;
   Totals tot_, since_output_;
   double dt_min_, max_removed_;
