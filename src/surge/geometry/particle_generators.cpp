@@ -60,7 +60,46 @@ bool is_open(const WallSpec& w, Face f) { return std::find(w.open.begin(), w.ope
 // so the result (ties included) is that of a loop over all triangles.
 // Beyond `limit` a caller needs the side only: a terrain (a height field) gives it from its
 // height at p, far cheaper than the growing search (other meshes search on).
+// Whether p lies inside the closed mesh m (1) or outside (0), from the parity of the
+// crossings of a vertical ray up from p; -1 when every try grazes an edge or vertex. For
+// points farther than `nudge` x 1e6 from every triangle: a try that grazes is moved aside
+// by a fraction of `nudge`, which does not take it across the surface.
+int inside_closed(const Mesh& m, const Vec3d& p, double nudge) {
+  thread_local std::vector<std::uint32_t> column;
+  constexpr double e = 1e-9; // barycentric margin: closer to an edge is a graze
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const Vec3d q = p + Vec3d{0.3719 * attempt, 0.6173 * attempt, 0} * nudge;
+    triangles_near(m, q, {q.x, q.y, 1e300}, column);
+    int crossings = 0;
+    bool grazed = false;
+    for (const std::uint32_t i : column) {
+      const Triangle& t = m.tris[i];
+      const double det = (t.b.y - t.c.y) * (t.a.x - t.c.x) + (t.c.x - t.b.x) * (t.a.y - t.c.y);
+      if (std::fabs(det) <= 1e-14 * (norm(t.b - t.a) * norm(t.c - t.a))) continue; // vertical: the ray runs past it
+      const double l1 = ((t.b.y - t.c.y) * (q.x - t.c.x) + (t.c.x - t.b.x) * (q.y - t.c.y)) / det;
+      const double l2 = ((t.c.y - t.a.y) * (q.x - t.c.x) + (t.a.x - t.c.x) * (q.y - t.c.y)) / det;
+      const double l3 = 1 - l1 - l2;
+      if (l1 < -e || l2 < -e || l3 < -e) continue;
+      if (l1 < e || l2 < e || l3 < e) {
+        grazed = true;
+        break;
+      }
+      if (l1 * t.a.z + l2 * t.b.z + l3 * t.c.z > q.z) ++crossings;
+    }
+    if (!grazed) return crossings % 2;
+  }
+  return -1;
+}
+
 double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr, double limit = 1e300) {
+  // Beyond `limit` from the box around the triangles: no triangle is within limit, and the
+  // point is outside (of a closed mesh; an open one's far side matters to no caller). The
+  // lattice around a small detailed body is mostly such points: they cost no triangle
+  // (the search below grows its box until it holds every triangle).
+  if (!at && m.index && !m.heights && limit < 1e300) {
+    const double d2 = m.index->box_distance2(p);
+    if (d2 > limit * limit) return std::sqrt(d2);
+  }
   thread_local std::vector<std::uint32_t> near;
   double best = 1e300, best_sign = 1;
   Vec3d best_point = p;
@@ -86,11 +125,16 @@ double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr, doubl
     }
     const bool all = !m.index || near.size() == m.tris.size();
     if (all || best + 1e-9 * r <= r) break;
-    // No triangle within r >= limit: |d| > r, and the side is what the caller needs.
+    // No triangle within r >= limit: |d| > r, and the side is what the caller needs: under
+    // a terrain or not, inside a closed mesh or not (the search would grow its box until
+    // the nearest triangle, many of a detailed body, for every point deep inside it or in
+    // its bounding box).
     if (r >= limit && m.heights && !at) {
       const double z = surface_height(*m.heights, p.x, p.y);
       if (!std::isnan(z)) return p.z >= z ? r : -r;
     }
+    if (r >= limit && m.closed && !at)
+      if (const int in = inside_closed(m, p, 1e-6 * limit); in >= 0) return in ? -r : r;
   }
   if (at) *at = best_point;
   return best * best_sign;

@@ -3,10 +3,14 @@
 #include "surge/core/error.hpp"
 #include "surge/geometry/closest_point.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <tuple>
 
 namespace surge::geometry {
 
@@ -99,6 +103,21 @@ void finish_mesh(Mesh& m, const std::string& name) {
     if (norm(cross(m.tris[i].b - m.tris[i].a, m.tris[i].c - m.tris[i].a)) <= 0)
       throw InputError(name, 0, "", "triangle " + std::to_string(i) + " is degenerate (zero area)");
   m.index = std::make_shared<const TriangleIndex>(m.tris);
+  // Closed: every directed edge a -> b has exactly one b -> a (vertices compared exactly:
+  // STL repeats their coordinates), and the signed volume is positive.
+  std::map<std::array<double, 6>, int> edges;
+  double volume = 0;
+  for (const Triangle& t : m.tris) {
+    const Vec3d v[3] = {t.a, t.b, t.c};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d &a = v[k], &b = v[(k + 1) % 3];
+      const bool fwd = std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+      const Vec3d &lo = fwd ? a : b, &hi = fwd ? b : a;
+      edges[{lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}] += fwd ? 1 : 16;
+    }
+    volume += dot(t.a, cross(t.b, t.c)) / 6;
+  }
+  m.closed = volume > 0 && std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 17; });
 }
 
 void triangles_near(const Mesh& m, const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) {

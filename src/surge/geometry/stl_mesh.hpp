@@ -21,6 +21,9 @@ struct Mesh {
   std::vector<Triangle> tris;
   std::shared_ptr<const TriangleIndex> index; // set by finish_mesh
   std::shared_ptr<const Raster> heights;      // a terrain's grid (the mesh is its surface), else null
+  // Watertight (each edge shared by two triangles, once each way) and wound outwards
+  // (positive volume): its inside is where a ray crosses it an odd number of times.
+  bool closed = false;
 };
 
 // Checks the triangles (some, none degenerate; `name` in messages) and indexes them:

@@ -6,6 +6,7 @@
 #pragma once
 #include "surge/core/types.hpp"
 #include "surge/geometry/box_buckets.hpp"
+#include <cmath>
 
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,15 @@ public:
   void overlapping(const Vec3d& lo, const Vec3d& hi, std::vector<std::uint32_t>& out) const;
   // The cell size of the buckets.
   [[nodiscard]] double cell() const { return grid_.cell; }
+  // The squared distance from p to the box around all triangles (0 inside it).
+  [[nodiscard]] double box_distance2(const Vec3d& p) const {
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = std::fmax(std::fmax(grid_.lo[k] - p[k], p[k] - hi_[k]), 0.0);
+      d2 += e * e;
+    }
+    return d2;
+  }
 
 private:
   BoxBuckets grid_;

@@ -173,7 +173,8 @@ void write_triangles_vtp(const std::string& path, const std::vector<std::array<V
       cells.push_back(static_cast<std::int64_t>(cells.size()));
       push3(pos, origin + Vec3d(p));
     }
-  VtpBuilder b(cells.size(), {}, std::move(cells));
+  const std::size_t n = cells.size(); // (before cells is moved into the builder)
+  VtpBuilder b(n, {}, std::move(cells));
   b.points(pos);
   b.write(path);
 }

@@ -1,8 +1,8 @@
 // VTK XML PolyData (.vtp) with raw binary appended data, and .pvd time collections.
 #pragma once
-#include <array>
 #include "surge/core/types.hpp"
 #include "surge/particles/particle_store.hpp"
+#include <array>
 
 #include <string>
 #include <vector>
