@@ -80,12 +80,13 @@ SURGE_HD inline int wall_contacts(const WallTriangle* tris, const TriangleGridVi
 }
 
 // A wall's velocity at a contact point and its angular velocity: zero for a still wall
-// (body < 0), else those of its body's rigid motion.
+// (body < 0, or any wall before set_wall_bodies: a pack settling against a moving wall's
+// placement), else those of its body's rigid motion.
 struct WallMotion {
   Vec3 vel{}, omega{};
 };
 SURGE_HD inline WallMotion wall_motion(const WallBodiesView& b, int body, const Vec3& at) {
-  if (body < 0) return {};
+  if (body < 0 || body >= b.n || !b.state) return {};
   const RigidState& s = b.state[body];
   return {s.vel + cross(s.omega, at - s.pos), s.omega};
 }
