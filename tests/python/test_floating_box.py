@@ -30,13 +30,13 @@ def check(cond, what):
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 case = os.path.join(CASES, "floating_box.yaml")
-runs = {"box": ["--set", "time.end=1.0"],
+runs = {"box": ["--set", "time.end=1.0"] + COARSE,
         "cube": ["--set", "walls.1.box.min=[0.15,0.15,0.1]", "--set", "walls.1.box.max=[0.25,0.25,0.2]",
-                 "--set", "time.end=0.6" if COARSE else "time.end=0.5"]}
+                 "--set", "time.end=0.5"]}
 g = {}
 for name, extra in runs.items():
     out = os.path.join(WORK, name)
-    r = subprocess.run([SURGE, "run", case, "--out", out, "--quiet"] + extra + COARSE, capture_output=True, text=True)
+    r = subprocess.run([SURGE, "run", case, "--out", out, "--quiet"] + extra, capture_output=True, text=True)
     check(r.returncode == 0, f"{name} runs (exit {r.returncode}: {r.stderr[-300:]})")
     if r.returncode != 0:
         sys.exit(1)

@@ -573,6 +573,7 @@ WallBodiesView DemSolver::bodies_view() {
   return b;
 }
 
+namespace detail {
 // The body a wall contact's partner belongs to, or -1 (a still wall, an empty slot).
 SURGE_HD inline int partner_body(std::uint32_t partner, const Plane* planes, const WallTriangle* tris) {
   if (partner == no_partner) return -1;
@@ -581,45 +582,52 @@ SURGE_HD inline int partner_body(std::uint32_t partner, const Plane* planes, con
   return -1;
 }
 
+// flag[i]: 1 when sphere i has a wall contact with a moving body.
+void flag_body_contacts(const DemView& v, const Plane* planes, const WallTriangle* tris, std::uint32_t* flag) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
+        std::uint32_t touches = 0;
+        for (int k = 0; k < max_wall_slots; ++k) touches |= partner_body(row[k].partner, planes, tris) >= 0 ? 1U : 0U;
+        flag[i] = touches;
+      });
+}
+
+// The flagged spheres' contacts, at[i] their places (the flags' exclusive scan).
+void gather_body_contacts(const DemView& v, const Plane* planes, const WallTriangle* tris, const WallReaction* react,
+                          const std::uint32_t* at, BodyContact* out) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        const std::uint32_t id = v.id[i];
+        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(id) * max_wall_slots;
+        BodyContact c{};
+        bool touches = false;
+        for (int k = 0; k < max_wall_slots; ++k) {
+          c.body[k] = partner_body(row[k].partner, planes, tris);
+          c.react[k] = react[static_cast<std::size_t>(id) * max_wall_slots + k];
+          touches = touches || c.body[k] >= 0;
+        }
+        if (!touches) return;
+        c.id = id;
+        c.pos = v.pos[i];
+        out[at[i]] = c;
+      });
+}
+} // namespace detail
+
 // Minus the spheres' wall reactions of this step, per body: in sphere id order and in
 // double, at the spheres' positions before they move (those the step's contacts used).
 // Only the spheres touching a body are copied to the host (flagged, counted by a scan and
 // gathered on the device): a few among many.
 void DemSolver::sum_body_loads() {
   const DemView v = view();
-  const Plane* planes = planes_.data();
-  const WallTriangle* tris = triangles_.data();
-  const WallReaction* react = wall_react_.data();
   tmpu_.resize(static_cast<std::size_t>(n_));
-  std::uint32_t* flag = tmpu_.data();
-  par::parallel_for(
-      n_, SURGE_LAMBDA(int i) {
-        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
-        std::uint32_t touches = 0;
-        for (int k = 0; k < max_wall_slots; ++k) touches |= partner_body(row[k].partner, planes, tris) >= 0 ? 1U : 0U;
-        flag[i] = touches;
-      });
   body_at_.resize(static_cast<std::size_t>(n_));
-  const std::uint32_t count = algo::exclusive_scan(flag, body_at_.data(), n_);
+  detail::flag_body_contacts(v, planes_.data(), triangles_.data(), tmpu_.data());
+  const std::uint32_t count = algo::exclusive_scan(tmpu_.data(), body_at_.data(), n_);
   body_contacts_.resize(count);
-  const std::uint32_t* at = body_at_.data();
-  BodyContact* out = body_contacts_.data();
-  par::parallel_for(
-      n_, SURGE_LAMBDA(int i) {
-        const std::uint32_t id = v.id[i];
-        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(id) * max_wall_slots;
-        bool touches = false;
-        for (int k = 0; k < max_wall_slots; ++k) touches = touches || partner_body(row[k].partner, planes, tris) >= 0;
-        if (!touches) return;
-        BodyContact c;
-        c.id = id;
-        c.pos = v.pos[i];
-        for (int k = 0; k < max_wall_slots; ++k) {
-          c.body[k] = partner_body(row[k].partner, planes, tris);
-          c.react[k] = react[static_cast<std::size_t>(id) * max_wall_slots + k];
-        }
-        out[at[i]] = c;
-      });
+  detail::gather_body_contacts(v, planes_.data(), triangles_.data(), wall_react_.data(), body_at_.data(),
+                               body_contacts_.data());
   std::vector<BodyContact> list = par::download(body_contacts_);
   std::sort(list.begin(), list.end(), [](const BodyContact& a, const BodyContact& b) { return a.id < b.id; });
   std::vector<WallLoadD> loads(body_states_host_.size());

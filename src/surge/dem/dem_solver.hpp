@@ -95,6 +95,15 @@ struct WallBodiesView {
   }
 };
 
+// A sphere touching a moving wall, for the sum of the loads on the bodies: its id, its
+// position and, per wall slot, the slot's body (or -1) and reaction.
+struct BodyContact {
+  std::uint32_t id;
+  Vec3 pos;
+  int body[4]; // max_wall_slots
+  WallReaction react[4];
+};
+
 struct Sphere {
   Vec3 pos{}, vel{}, omega{};
   Real radius = 0.01f;
@@ -104,6 +113,7 @@ struct Sphere {
 
 inline constexpr int max_contacts = 16;  // listed partner spheres (with history) per sphere
 inline constexpr int max_wall_slots = 4; // wall contacts (planes, mesh points) with history per sphere
+static_assert(sizeof(BodyContact::body) / sizeof(int) == max_wall_slots);
 inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
 inline constexpr std::uint32_t plane_partner = 0x80000000U;    // partner id of plane k: plane_partner | k
 inline constexpr std::uint32_t triangle_partner = 0x40000000U; // partner id of wall triangle t
@@ -300,13 +310,6 @@ private:
   par::Buffer<WallTriangle> body_ref_;
   par::Buffer<Real> body_reach_;
   par::Buffer<WallReaction> wall_react_;
-  // A sphere touching a body, for the loads' sum: its id, position and wall slots.
-  struct BodyContact {
-    std::uint32_t id;
-    Vec3 pos;
-    int body[max_wall_slots];
-    WallReaction react[max_wall_slots];
-  };
   par::Buffer<std::uint32_t> body_at_;
   par::Buffer<BodyContact> body_contacts_;
   std::vector<WallLoadD> body_loads_;

@@ -61,22 +61,8 @@ public:
   }
   void write(const std::string& path) {
     x_ << "</PointData>\n";
-    if (!lines_.empty()) {
-      std::vector<std::int64_t> offsets;
-      for (std::size_t k = 2; k <= lines_.size(); k += 2) offsets.push_back(static_cast<std::int64_t>(k));
-      x_ << "<Lines>\n";
-      array("connectivity", lines_, 1);
-      array("offsets", offsets, 1);
-      x_ << "</Lines>\n";
-    }
-    if (!tris_.empty()) {
-      std::vector<std::int64_t> offsets;
-      for (std::size_t k = 3; k <= tris_.size(); k += 3) offsets.push_back(static_cast<std::int64_t>(k));
-      x_ << "<Polys>\n";
-      array("connectivity", tris_, 1);
-      array("offsets", offsets, 1);
-      x_ << "</Polys>\n";
-    }
+    cells("Lines", lines_, 2);
+    cells("Polys", tris_, 3);
     x_ << "</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
     std::string out = x_.str();
     out += blob_;
@@ -85,6 +71,16 @@ public:
   }
 
 private:
+  // A cell section (Lines, Polys) of cells of `per` points each, if there are any.
+  void cells(const char* tag, const std::vector<std::int64_t>& connectivity, std::size_t per) {
+    if (connectivity.empty()) return;
+    std::vector<std::int64_t> offsets;
+    for (std::size_t k = per; k <= connectivity.size(); k += per) offsets.push_back(static_cast<std::int64_t>(k));
+    x_ << "<" << tag << ">\n";
+    array("connectivity", connectivity, 1);
+    array("offsets", offsets, 1);
+    x_ << "</" << tag << ">\n";
+  }
   std::vector<std::int64_t> lines_, tris_;
   std::ostringstream x_;
   std::string blob_;
