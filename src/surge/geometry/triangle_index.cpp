@@ -32,6 +32,14 @@ void TriangleIndex::overlapping(const Vec3d& lo, const Vec3d& hi, std::vector<st
     if (hi[k] < grid_.lo[k] || lo[k] > hi_[k]) return;
   long c0[3], c1[3];
   grid_.cells(lo, hi, c0, c1);
+  // A triangle spanning several cells is met once per cell: each is marked in a bitmap of
+  // all triangles (this thread's, cleared after use), which is then read in ascending
+  // order. The same list as sorting and removing duplicates, without the sort (most of a
+  // large query's cost).
+  thread_local std::vector<std::uint64_t> seen;
+  const std::size_t words = (box_lo_.size() + 63) / 64;
+  if (seen.size() < words) seen.resize(words, 0);
+  std::size_t first = words, last = 0;
   for (long z = c0[2]; z <= c1[2]; ++z)
     for (long y = c0[1]; y <= c1[1]; ++y)
       for (long x = c0[0]; x <= c1[0]; ++x) {
@@ -39,11 +47,19 @@ void TriangleIndex::overlapping(const Vec3d& lo, const Vec3d& hi, std::vector<st
         for (std::uint32_t i = grid_.start[c]; i < grid_.start[c + 1]; ++i) {
           const std::uint32_t t = grid_.items[i];
           const Vec3d &a = box_lo_[t], &b = box_hi_[t];
-          if (a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y && a.z <= hi.z && b.z >= lo.z) out.push_back(t);
+          if (a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y && a.z <= hi.z && b.z >= lo.z) {
+            const std::size_t w = t / 64;
+            seen[w] |= std::uint64_t{1} << (t % 64);
+            first = std::min(first, w);
+            last = std::max(last, w);
+          }
         }
       }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  for (std::size_t w = first; w <= last && first < words; ++w) {
+    for (std::uint64_t bits = seen[w]; bits != 0; bits &= bits - 1)
+      out.push_back(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(bits))));
+    seen[w] = 0;
+  }
 }
 
 } // namespace surge::geometry
