@@ -188,7 +188,8 @@ struct WallsView {
   const WallTriangle* tris;
   TriangleGridView tri_grid;
   WallBodiesView bodies;
-  WallReaction* react; // max_wall_slots per sphere, by id: with moving walls only, else null
+  WallReaction* react;    // max_wall_slots per sphere, by id: with moving walls only, else null
+  std::uint32_t* touches; // per sphere (sorted): 1 when a recorded contact is with a moving body; with react
 };
 template <class L>
 SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, int i, Vec3& f, Vec3& t, int& used) {
@@ -202,11 +203,13 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
   if (!near) {
     if (wrow[0].partner != no_partner) // (slots are held from the first on)
       for (int k = 0; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
+    if (w.touches) w.touches[i] = 0;
     return;
   }
   ContactSlot old_w[max_wall_slots];
   for (int k = 0; k < max_wall_slots; ++k) old_w[k] = wrow[k];
   int wused = 0;
+  std::uint32_t touches = 0;
   auto wall = [&](const Vec3& n, Real un, std::uint32_t partner, int material, int body, const Vec3& at) {
     const WallPair<L> wp = wall_pair_input<L>(v, w.mats, i, material, n, un, wall_motion(w.bodies, body, at));
     ContactSlot s{};
@@ -218,7 +221,10 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
     ++used;
     if (wused < max_wall_slots) {
       wrow[wused] = slot_of(r.springs, partner);
-      if (w.react) w.react[row + wused] = {r.force_a, r.torque_a};
+      if (w.react) {
+        w.react[row + wused] = {r.force_a, r.torque_a};
+        touches |= body >= 0 ? 1U : 0U;
+      }
       ++wused;
     }
   };
@@ -239,6 +245,7 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
     }
   }
   for (int k = wused; k < max_wall_slots; ++k) wrow[k] = ContactSlot{};
+  if (w.touches) w.touches[i] = touches;
 }
 
 // Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
@@ -518,6 +525,8 @@ void DemSolver::set_wall_bodies(const std::vector<RigidState>& placed) {
   par::upload(body_reach_, reach);
   wall_react_.resize(static_cast<std::size_t>(n_) * max_wall_slots);
   par::fill(wall_react_, WallReaction{});
+  body_flag_.resize(static_cast<std::size_t>(n_));
+  par::fill(body_flag_, std::uint32_t{0});
   body_loads_.assign(nb, WallLoadD{});
   tri_grid_radius_ = -1; // the grid holds the still triangles only
   move_walls(placed);
@@ -582,34 +591,22 @@ SURGE_HD inline int partner_body(std::uint32_t partner, const Plane* planes, con
   return -1;
 }
 
-// flag[i]: 1 when sphere i has a wall contact with a moving body.
-void flag_body_contacts(const DemView& v, const Plane* planes, const WallTriangle* tris, std::uint32_t* flag) {
-  par::parallel_for(
-      v.n, SURGE_LAMBDA(int i) {
-        const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(v.id[i]) * max_wall_slots;
-        std::uint32_t touches = 0;
-        for (int k = 0; k < max_wall_slots; ++k) touches |= partner_body(row[k].partner, planes, tris) >= 0 ? 1U : 0U;
-        flag[i] = touches;
-      });
-}
-
-// The flagged spheres' contacts, at[i] their places (the flags' exclusive scan).
+// The spheres the sphere pass flagged as touching a moving body: their contacts, at[i]
+// their places (the flags' exclusive scan).
 void gather_body_contacts(const DemView& v, const Plane* planes, const WallTriangle* tris, const WallReaction* react,
-                          const std::uint32_t* at, BodyContact* out) {
+                          const std::uint32_t* flag, const std::uint32_t* at, BodyContact* out) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
+        if (!flag[i]) return;
         const std::uint32_t id = v.id[i];
         const ContactSlot* row = v.wall_hist + static_cast<std::size_t>(id) * max_wall_slots;
         BodyContact c{};
-        bool touches = false;
+        c.id = id;
+        c.pos = v.pos[i];
         for (int k = 0; k < max_wall_slots; ++k) {
           c.body[k] = partner_body(row[k].partner, planes, tris);
           c.react[k] = react[static_cast<std::size_t>(id) * max_wall_slots + k];
-          touches = touches || c.body[k] >= 0;
         }
-        if (!touches) return;
-        c.id = id;
-        c.pos = v.pos[i];
         out[at[i]] = c;
       });
 }
@@ -617,30 +614,28 @@ void gather_body_contacts(const DemView& v, const Plane* planes, const WallTrian
 
 // Minus the spheres' wall reactions of this step, per body: in sphere id order and in
 // double, at the spheres' positions before they move (those the step's contacts used).
-// Only the spheres touching a body are copied to the host (flagged, counted by a scan and
-// gathered on the device): a few among many.
+// Only the spheres touching a body are copied to the host (flagged by the sphere pass,
+// counted by a scan and gathered on the device): a few among many.
 void DemSolver::sum_body_loads() {
   const DemView v = view();
-  tmpu_.resize(static_cast<std::size_t>(n_));
   body_at_.resize(static_cast<std::size_t>(n_));
-  detail::flag_body_contacts(v, planes_.data(), triangles_.data(), tmpu_.data());
-  const std::uint32_t count = algo::exclusive_scan(tmpu_.data(), body_at_.data(), n_);
+  const std::uint32_t count = algo::exclusive_scan(body_flag_.data(), body_at_.data(), n_);
   body_contacts_.resize(count);
-  detail::gather_body_contacts(v, planes_.data(), triangles_.data(), wall_react_.data(), body_at_.data(),
-                               body_contacts_.data());
-  std::vector<BodyContact> list = par::download(body_contacts_);
+  detail::gather_body_contacts(v, planes_.data(), triangles_.data(), wall_react_.data(), body_flag_.data(),
+                               body_at_.data(), body_contacts_.data());
+  std::vector<BodyContact>& list = body_contacts_host_;
+  par::download(list, body_contacts_, count);
   std::sort(list.begin(), list.end(), [](const BodyContact& a, const BodyContact& b) { return a.id < b.id; });
-  std::vector<WallLoadD> loads(body_states_host_.size());
+  body_loads_.assign(body_states_host_.size(), WallLoadD{});
   for (const BodyContact& c : list)
     for (int k = 0; k < max_wall_slots; ++k) {
       if (c.body[k] < 0) continue;
-      WallLoadD& l = loads[static_cast<std::size_t>(c.body[k])];
+      WallLoadD& l = body_loads_[static_cast<std::size_t>(c.body[k])];
       const Vec3d f(c.react[k].force);
       l.force -= f;
       l.moment -= cross(Vec3d(c.pos) - Vec3d(body_states_host_[static_cast<std::size_t>(c.body[k])].pos), f) +
                   Vec3d(c.react[k].torque);
     }
-  body_loads_ = std::move(loads);
 }
 
 void DemSolver::set_spheres(const std::vector<Sphere>& s) {
@@ -805,7 +800,8 @@ void DemSolver::step(Real dt) {
       detail::sphere_pass<L>(v,
                              detail::WallsView{materials_.data(), planes_.data(), n_planes_, triangles_.data(),
                                                tri_grid_, bodies_view(),
-                                               has_wall_bodies() ? wall_react_.data() : nullptr},
+                                               has_wall_bodies() ? wall_react_.data() : nullptr,
+                                               has_wall_bodies() ? body_flag_.data() : nullptr},
                              dt);
     });
     if (has_wall_bodies()) sum_body_loads();

@@ -310,8 +310,9 @@ private:
   par::Buffer<WallTriangle> body_ref_;
   par::Buffer<Real> body_reach_;
   par::Buffer<WallReaction> wall_react_;
-  par::Buffer<std::uint32_t> body_at_;
+  par::Buffer<std::uint32_t> body_flag_, body_at_; // per sphere (sorted): touches a body; its place
   par::Buffer<BodyContact> body_contacts_;
+  std::vector<BodyContact> body_contacts_host_;
   std::vector<WallLoadD> body_loads_;
   void sum_body_loads();
   [[nodiscard]] WallBodiesView bodies_view();

@@ -401,6 +401,24 @@ void motion_keys(std::vector<KeyDoc>& k) {
   add(k, "walls[].body.", body_fields());
 }
 
+// dem.walls[]: planes, meshes and terrains the spheres meet, and how they move.
+void dem_wall_keys(std::vector<KeyDoc>& k) {
+  k.push_back({"dem.walls", "list", "", "", "", "walls the spheres meet: planes and meshes"});
+  add(k, "dem.walls[].", dem_wall_fields());
+  k.push_back({"dem.walls[].plane", "{point, normal}", "", "m", "normal not zero", "an infinite plane"});
+  k.push_back({"dem.walls[].mesh", "file", "", "", "STL", "a triangle mesh"});
+  k.push_back({"dem.walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
+               "the ground from an elevation grid, cropped to the domain"});
+  k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
+  k.push_back({"dem.walls[].motion", "mapping", "", "", "as walls[].motion",
+               "a prescribed motion of the plane or mesh (the keys of walls[].motion); the spheres feel its velocity"});
+  k.push_back({"dem.walls[].body", "mapping", "", "", "a closed mesh; as walls[].body",
+               "a free rigid body moved by the spheres' contact forces and gravity (the keys of walls[].body)"});
+  k.push_back({"dem.walls[].follows", "text", "", "", "a moving wall's name",
+               "moves with that SPH wall (its law or free body): one solid seen by water and spheres; the "
+               "spheres' forces on it join the water's"});
+}
+
 std::vector<KeyDoc> build_keys() {
   std::vector<KeyDoc> k;
   const std::string vec = "[x, y, z]";
@@ -459,20 +477,7 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"dem.materials[].twisting", "[k, cap]", "[0, 0]", "-", ">= 0", "twisting resistance factors"});
   k.push_back({"dem.materials[].bond", "{cn, cs}", "", "Pa", ">= 0",
                "bonded material: normal and shear bond strengths (SPEC 3.4)"});
-  k.push_back({"dem.walls", "list", "", "", "", "walls the spheres meet: planes and meshes"});
-  add(k, "dem.walls[].", dem_wall_fields());
-  k.push_back({"dem.walls[].plane", "{point, normal}", "", "m", "normal not zero", "an infinite plane"});
-  k.push_back({"dem.walls[].mesh", "file", "", "", "STL", "a triangle mesh"});
-  k.push_back({"dem.walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
-               "the ground from an elevation grid, cropped to the domain"});
-  k.push_back({"dem.walls[].material", "text", "required", "", "a material's name", "its material"});
-  k.push_back({"dem.walls[].motion", "mapping", "", "", "as walls[].motion",
-               "a prescribed motion of the plane or mesh (the keys of walls[].motion); the spheres feel its velocity"});
-  k.push_back({"dem.walls[].body", "mapping", "", "", "a closed mesh; as walls[].body",
-               "a free rigid body moved by the spheres' contact forces and gravity (the keys of walls[].body)"});
-  k.push_back({"dem.walls[].follows", "text", "", "", "a moving wall's name",
-               "moves with that SPH wall (its law or free body): one solid seen by water and spheres; the "
-               "spheres' forces on it join the water's"});
+  dem_wall_keys(k);
   k.push_back({"dem.packs", "list", "", "", "", "sphere packs"});
   k.push_back({"dem.packs[].box", "{min, max}", "", "m", "inside the domain", "a lattice (or random pack) in a box"});
   k.push_back({"dem.packs[].mesh", "file", "", "", "closed STL", "a pack inside a closed mesh"});

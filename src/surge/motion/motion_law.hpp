@@ -51,6 +51,12 @@ private:
   std::unique_ptr<MotionLaw> law_;
 };
 
+// The pivot of a wall moved by a law (an SPH wall or a DEM plane or mesh): as given, else
+// the centre of what it fills as placed (a free body's pivot is its centre of mass).
+[[nodiscard]] inline Vec3d law_pivot(const MotionSpec& m, const Box& placed) {
+  return m.pivot_given ? m.pivot : (placed.min + placed.max) * 0.5;
+}
+
 // Shared by the laws that move along a line: the pose of displacement s and speed v along
 // the unit vector d.
 [[nodiscard]] inline Pose along(const Vec3d& d, double s, double v) {

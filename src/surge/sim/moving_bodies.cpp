@@ -141,7 +141,7 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
       b.free = make_free_body(c, d.body, mp, key + ".body");
     } else {
       const Box placed = mesh ? geometry::bounds(*mesh) : Box{d.point, d.point};
-      b.pivot = d.motion.pivot_given ? d.motion.pivot : (placed.min + placed.max) * 0.5;
+      b.pivot = motion::law_pivot(d.motion, placed);
       b.law = std::make_unique<motion::Motion>(d.motion, motion::MotionContext{c.g(), c.source, key + ".motion"});
       if (mesh) check_stays_inside(c, *b.law, {d.name, key + ".motion", d.motion.line, b.pivot, placed, c.domain});
     }

@@ -1,4 +1,5 @@
 #include "surge/sph/initial_state.hpp"
+#include "surge/motion/motion_law.hpp"
 
 #include "surge/core/error.hpp"
 #include "surge/geometry/mass_properties.hpp"
@@ -40,9 +41,7 @@ using Meshes = std::vector<std::unique_ptr<geometry::Mesh>>;
 Vec3d wall_pivot(const WallSpec& w, const geometry::Mesh* mesh) {
   if (w.body.free)
     return (mesh ? geometry::mesh_mass_properties(*mesh) : geometry::box_mass_properties(w.box)).centroid;
-  if (w.motion.pivot_given) return w.motion.pivot;
-  const Box b = mesh ? geometry::bounds(*mesh) : w.box;
-  return (b.min + b.max) * 0.5;
+  return motion::law_pivot(w.motion, mesh ? geometry::bounds(*mesh) : w.box);
 }
 
 // True when pred(wall, its mesh) holds for some wall of the case.
