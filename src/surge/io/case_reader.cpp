@@ -1,6 +1,7 @@
 #include "surge/io/case_reader.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/core/gauge_types.hpp"
 #include "surge/io/case_schema.hpp"
 #include "surge/motion/motion_law.hpp"
 
@@ -559,55 +560,27 @@ void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c
   }
 }
 
-// The component a gauge reads, checked against its type's choices.
+// The component a gauge reads, checked against its type's choices (core/gauge_types.hpp).
 void parse_component(const Reader& r, const YAML::Node& g, const std::string& path, GaugeSpec& gs) {
-  const std::string key = path + ".component";
-  switch (gs.type) {
-  case GaugeType::Sphere:
-  case GaugeType::Body: {
-    gs.component = r.get<std::string>(g, path, "component", "z");
-    std::set<std::string> ok{"x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz", "mx", "my", "mz"};
-    if (gs.type == GaugeType::Body) ok.insert("tilt");
-    if (ok.count(gs.component) == 0)
-      r.fail(g["component"], key,
-             gs.type == GaugeType::Sphere
-                 ? "a sphere gauge reads x, y, z (centre), vx, vy, vz (velocity), fx, fy, fz (fluid force) or mx, my, "
-                   "mz (fluid moment about the centre)"
-                 : "a body gauge reads x, y, z (pivot), vx, vy, vz (its velocity), fx, fy, fz (the water's force), "
-                   "mx, my, mz (the water's moment about the pivot) or tilt (degrees from upright)");
+  const GaugeTypeInfo& t = gauge_type(gs.type);
+  if (*t.components == 0) {
+    if (g["component"].IsDefined()) {
+      std::string with;
+      for (const auto& x : gauge_types)
+        if (*x.components) with += (with.empty() ? "" : ", ") + std::string(x.name);
+      r.fail(g["component"], path + ".component", "applies to " + with + " gauges only");
+    }
     return;
   }
-  case GaugeType::DemWall: {
-    gs.component = r.get<std::string>(g, path, "component", "fz");
-    const std::set<std::string> ok{"fx", "fy", "fz", "mx", "my", "mz"};
-    if (ok.count(gs.component) == 0)
-      r.fail(g["component"], key,
-             "a dem_wall gauge reads fx, fy, fz (force of the spheres on the wall) or mx, my, mz (moment about "
-             "'about')");
-    return;
-  }
-  case GaugeType::Velocity:
-  case GaugeType::Force:
-    gs.component = r.get<std::string>(g, path, "component", gs.type == GaugeType::Force ? "x" : "mag");
-    if (gs.component != "x" && gs.component != "y" && gs.component != "z" && gs.component != "mag")
-      r.fail(g["component"], key, "must be x, y, z or mag");
-    return;
-  default:
-    if (g["component"].IsDefined()) r.fail(g["component"], key, "applies to velocity and force gauges only");
-  }
+  gs.component = r.get<std::string>(g, path, "component", t.default_component);
+  if (!gauge_reads(t, gs.component)) r.fail(g["component"], path + ".component", t.help);
 }
-
-// The gauge types as the case file names them, in GaugeType's order (read and written).
-constexpr const char* gauge_type_names[] = {"height", "pressure", "velocity", "force", "sphere", "dem_wall", "body"};
 
 GaugeType parse_gauge_type(const Reader& r, const YAML::Node& g, const std::string& path) {
   const auto type = r.require<std::string>(g, path, "type");
-  std::string known;
-  for (std::size_t k = 0; k < std::size(gauge_type_names); ++k) {
-    if (type == gauge_type_names[k]) return static_cast<GaugeType>(k);
-    known += (k == 0 ? "" : (k + 1 == std::size(gauge_type_names) ? " or " : ", ")) + std::string(gauge_type_names[k]);
-  }
-  r.fail(g["type"], path + ".type", "unknown gauge type '" + type + "'; use " + known);
+  for (const auto& t : gauge_types)
+    if (type == t.name) return t.type;
+  r.fail(g["type"], path + ".type", "unknown gauge type '" + type + "'; use " + gauge_type_list(", ", " or "));
 }
 
 GaugeSpec parse_gauge(const Reader& r, const YAML::Node& g, const std::string& path, const Case& c,
@@ -738,8 +711,7 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
   }
   if (c.dem.active() && c.fluid.empty())
     for (std::size_t i = 0; i < c.gauges.size(); ++i)
-      if (c.gauges[i].type != GaugeType::Sphere && c.gauges[i].type != GaugeType::DemWall &&
-          c.gauges[i].type != GaugeType::Body)
+      if (gauge_type(c.gauges[i].type).water)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere, dem_wall or body gauges");
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
@@ -933,7 +905,7 @@ void write_walls(YAML::Emitter& e, const std::vector<WallSpec>& walls) {
 // Each gauge with the keys of its type only.
 void write_gauge(YAML::Emitter& e, const GaugeSpec& g) {
   e << YAML::BeginMap << YAML::Key << "name" << YAML::Value << g.name << YAML::Key << "type" << YAML::Value
-    << gauge_type_names[static_cast<int>(g.type)];
+    << gauge_type(g.type).name;
   switch (g.type) {
   case GaugeType::Height:
     e << YAML::Key << "x" << YAML::Value << g.x << YAML::Key << "y" << YAML::Value << g.y << YAML::Key << "surface"
@@ -953,8 +925,7 @@ void write_gauge(YAML::Emitter& e, const GaugeSpec& g) {
     e << YAML::Key << "sphere" << YAML::Value << g.sphere;
     break;
   }
-  if (g.type != GaugeType::Height && g.type != GaugeType::Pressure)
-    e << YAML::Key << "component" << YAML::Value << g.component;
+  if (*gauge_type(g.type).components) e << YAML::Key << "component" << YAML::Value << g.component;
   if (g.type == GaugeType::DemWall) {
     e << YAML::Key << "about" << YAML::Value;
     write_vec(e, g.about);

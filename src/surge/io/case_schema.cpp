@@ -1,5 +1,7 @@
 #include "surge/io/case_schema.hpp"
 
+#include "surge/core/gauge_types.hpp"
+
 #include "surge/motion/motion_law.hpp"
 
 #include <cmath>
@@ -453,8 +455,7 @@ std::vector<KeyDoc> build_keys() {
   motion_keys(k);
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
   k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
-  k.push_back({"gauges[].type", "choice", "required", "",
-               "height | pressure | velocity | force | sphere | dem_wall | body", "what is measured"});
+  k.push_back({"gauges[].type", "choice", "required", "", gauge_type_list(" | ", " | "), "what is measured"});
   k.push_back({"gauges[].x", "number", "required (height)", "m", "", "height gauge: the vertical line's x"});
   k.push_back({"gauges[].y", "number", "required (height)", "m", "", "height gauge: the vertical line's y"});
   k.push_back({"gauges[].at", vec, "required (pressure, velocity)", "m", "inside the domain", "the probe's point"});

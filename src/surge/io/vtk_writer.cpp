@@ -3,6 +3,7 @@
 #include "surge/io/atomic_file.hpp"
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -184,6 +185,21 @@ void PvdCollection::add(double time, const std::string& relative_file) {
   for (const auto& [t, f] : entries_) x << "<DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << f << "\"/>\n";
   x << "</Collection>\n</VTKFile>\n";
   write_file_atomic(path_, x.str());
+}
+
+FrameSeries::FrameSeries(const std::string& out_dir, const std::string& stem)
+    : out_dir_(out_dir), stem_(stem), pvd_(out_dir + "/" + stem + ".pvd") {}
+
+std::string FrameSeries::relative(int frame) const {
+  char num[16];
+  std::snprintf(num, sizeof num, "_%04d.vtp", frame);
+  return "particles/" + stem_ + num;
+}
+
+void FrameSeries::restored(const std::vector<double>& times) {
+  std::vector<std::pair<double, std::string>> entries;
+  for (std::size_t k = 0; k < times.size(); ++k) entries.emplace_back(times[k], relative(static_cast<int>(k)));
+  pvd_.restore(entries);
 }
 
 } // namespace surge::io

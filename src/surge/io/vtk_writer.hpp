@@ -47,4 +47,21 @@ private:
   std::vector<std::pair<double, std::string>> entries_;
 };
 
+// One series of frames of a run: files particles/<stem>_NNNN.vtp under the output folder
+// and their collection <stem>.pvd (fluid, walls, spheres, dem_walls).
+class FrameSeries {
+public:
+  FrameSeries(const std::string& out_dir, const std::string& stem);
+  // Where frame k's file goes (its writer writes it, then calls add).
+  [[nodiscard]] std::string path(int frame) const { return out_dir_ + "/" + relative(frame); }
+  void add(int frame, double t) { pvd_.add(t, relative(frame)); }
+  // A restart: frames 0, 1, ... written at these times already.
+  void restored(const std::vector<double>& times);
+
+private:
+  [[nodiscard]] std::string relative(int frame) const;
+  std::string out_dir_, stem_;
+  PvdCollection pvd_;
+};
+
 } // namespace surge::io

@@ -261,26 +261,10 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
   return f;
 }
 
-namespace {
-std::string dem_walls_name(std::size_t frame) {
-  char name[64];
-  std::snprintf(name, sizeof name, "particles/dem_walls_%04zu.vtp", frame);
-  return name;
-}
-} // namespace
-
 void DemWallFrames::write(const dem::DemSolver& solver, int frame, double t, const Vec3d& origin) {
   if (!on_) return;
-  const std::string name = dem_walls_name(static_cast<std::size_t>(frame));
-  io::write_triangles_vtp((out_ / name).string(), solver.moving_triangles(), origin);
-  pvd_.add(t, name);
-}
-
-void DemWallFrames::restored(const std::vector<double>& frame_times) {
-  if (!on_) return;
-  std::vector<std::pair<double, std::string>> entries;
-  for (std::size_t k = 0; k < frame_times.size(); ++k) entries.emplace_back(frame_times[k], dem_walls_name(k));
-  pvd_.restore(entries);
+  io::write_triangles_vtp(series_.path(frame), solver.moving_triangles(), origin);
+  series_.add(frame, t);
 }
 
 double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver) {
@@ -312,6 +296,24 @@ double sphere_gauge_value(const GaugeSpec& g, const std::vector<dem::Sphere>& sp
   if (g.component[0] == 'v') return spheres[k].vel[a];
   const std::vector<Vec3>& f = g.component[0] == 'f' ? fluid_force : fluid_moment;
   return k < f.size() ? static_cast<double>(f[k][a]) : 0.0;
+}
+
+DemGauges::DemGauges(const Case& c, const DemSetup& s, dem::DemSolver& solver, const MovingBodies& bodies, bool water)
+    : c_(&c), setup_(&s), solver_(&solver), bodies_(&bodies), spheres_(solver.spheres()) {
+  if (!water) return;
+  force_ = solver.external_forces();
+  moment_ = solver.external_torques();
+}
+
+double DemGauges::value(const GaugeSpec& g, double t) const {
+  switch (g.type) {
+  case GaugeType::DemWall:
+    return dem_wall_gauge_value(g, *c_, *setup_, *solver_);
+  case GaugeType::Body:
+    return bodies_->dem_gauge_value(g, t);
+  default:
+    return sphere_gauge_value(g, spheres_, force_, moment_, setup_->origin);
+  }
 }
 
 CoupledParts::CoupledParts(const Case& c, sph::InitialState& init) : setup(dem_setup(c)) {

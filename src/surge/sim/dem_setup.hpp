@@ -52,18 +52,36 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver);
 // what a viewer shows of a free block or a gate the spheres meet. Off without them.
 class DemWallFrames {
 public:
-  DemWallFrames(const std::filesystem::path& out, bool enabled)
-      : out_(out), pvd_((out / "dem_walls.pvd").string()), on_(enabled) {}
+  DemWallFrames(const std::filesystem::path& out, bool enabled) : series_(out.string(), "dem_walls"), on_(enabled) {}
   void write(const dem::DemSolver& solver, int frame, double t, const Vec3d& origin);
-  void restored(const std::vector<double>& frame_times);
+  void restored(const std::vector<double>& frame_times) {
+    if (on_) series_.restored(frame_times);
+  }
 
 private:
-  std::filesystem::path out_;
-  io::PvdCollection pvd_;
+  io::FrameSeries series_;
   bool on_;
 };
 // Value of a dem_wall gauge: force of the spheres on the named wall, or its moment.
 double dem_wall_gauge_value(const GaugeSpec& g, const Case& c, const DemSetup& s, dem::DemSolver& solver);
+
+class MovingBodies;
+// The gauges the DEM side reads (core/gauge_types.hpp: not `water`): spheres, DEM walls and
+// the DEM walls' own bodies, for both steppers. Built at each sample (the spheres and their
+// fluid loads copied once for every gauge of the row); the loads are empty without water.
+class DemGauges {
+public:
+  DemGauges(const Case& c, const DemSetup& s, dem::DemSolver& solver, const MovingBodies& bodies, bool water);
+  [[nodiscard]] double value(const GaugeSpec& g, double t) const;
+
+private:
+  const Case* c_;
+  const DemSetup* setup_;
+  dem::DemSolver* solver_;
+  const MovingBodies* bodies_;
+  std::vector<dem::Sphere> spheres_;
+  std::vector<Vec3> force_, moment_; // the fluid's, on each sphere
+};
 // Checks that every sphere gauge names an existing sphere.
 void check_sphere_gauges(const Case& c, std::size_t n_spheres);
 // Value of a sphere gauge: centre (absolute), velocity, fluid force or fluid moment

@@ -1,6 +1,5 @@
 // DEM-only runs: spheres from the case's packs, walls from planes and STL meshes.
 #include "surge/core/error.hpp"
-#include "surge/core/version.hpp"
 #include "surge/dem/dem_solver.hpp"
 #include "surge/domain/comm.hpp"
 #include "surge/geometry/sphere_packs.hpp"
@@ -12,6 +11,7 @@
 #include "surge/sim/dem_setup.hpp"
 #include "surge/sim/moving_bodies.hpp"
 #include "surge/sim/run_loop.hpp"
+#include "surge/sim/run_summary.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/simulation.hpp"
 
@@ -65,7 +65,7 @@ class DemStepper final : public Stepper {
 public:
   DemStepper(const Case& c, const RunOptions& opt, const io::Checkpoint* ck)
       : c_(c), setup_(dem_setup(c)), solver_(make_dem_solver(c, setup_)), bodies_(c, nullptr), out_(opt.out_dir),
-        pvd_((out_ / "spheres.pvd").string()), dem_walls_(out_, bodies_.moves_dem()) {
+        spheres_(opt.out_dir, "spheres"), dem_walls_(out_, bodies_.moves_dem()) {
     check_sphere_gauges(c, setup_.spheres.size());
     bonds_ = setup_.bonded ? solver_.bond_touching(static_cast<Real>(c.dem.bond_gap)) : 0;
     dt_ = solver_.critical_dt(static_cast<Real>(c.dem.dt_factor));
@@ -73,8 +73,7 @@ public:
       const std::string path = (out_ / "checkpoint.bin").string();
       if (ck->dem_state.empty() || !ck->particles.pos.empty())
         throw InputError(path, 0, "", "not the checkpoint of a DEM-only run; restart with the case.yaml of that run");
-      if (!ck->gauge_rows.empty() && ck->gauge_rows.front().size() != c.gauges.size() + 1)
-        throw InputError(path, 0, "gauges", "the checkpoint's gauges differ from the case's");
+      check_restart_gauges(*ck, c.gauges.size(), path);
       try {
         solver_.restore(ck->dem_state);
       } catch (const std::invalid_argument& e) {
@@ -84,9 +83,7 @@ public:
       steps_ = ck->steps;
     }
     bodies_.attach(solver_, ck ? ck->time : 0.0); // the moving walls where they are at the start
-    if (!root()) return;
-    std::filesystem::create_directories(out_ / "particles");
-    io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
+    if (root()) prepare_output(c, opt.out_dir);
   }
 
   double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
@@ -115,12 +112,9 @@ public:
   }
   // Sphere, DEM-wall and body gauges (the only kinds a DEM-only case has): no fluid force.
   std::vector<double> sample(double t) override {
-    const auto sp = solver_.spheres();
+    const DemGauges dem(c_, setup_, solver_, bodies_, false);
     std::vector<double> row;
-    for (const auto& g : c_.gauges)
-      row.push_back(g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, setup_, solver_)
-                    : g.type == GaugeType::Body  ? bodies_.dem_gauge_value(g, t)
-                                                 : sphere_gauge_value(g, sp, {}, {}, setup_.origin));
+    for (const auto& g : c_.gauges) row.push_back(dem.value(g, t));
     return row;
   }
 
@@ -132,10 +126,8 @@ public:
         return false;
       }
     if (!root()) return true;
-    char name[64];
-    std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
-    io::write_spheres_vtp((out_ / "particles" / name).string(), f, setup_.origin);
-    pvd_.add(t, std::string("particles/") + name);
+    io::write_spheres_vtp(spheres_.path(frame), f, setup_.origin);
+    spheres_.add(frame, t);
     dem_walls_.write(solver_, frame, t, setup_.origin);
     return true;
   }
@@ -146,33 +138,20 @@ public:
   }
 
   void restored(const std::vector<double>& frame_times) override {
-    std::vector<std::pair<double, std::string>> entries;
-    for (std::size_t k = 0; k < frame_times.size(); ++k) {
-      char name[64];
-      std::snprintf(name, sizeof name, "particles/spheres_%04zu.vtp", k);
-      entries.emplace_back(frame_times[k], name);
-    }
-    pvd_.restore(entries);
+    spheres_.restored(frame_times);
     dem_walls_.restored(frame_times);
   }
 
-  void write_summary(const std::string& status, int code, const std::string& message, const LoopClock& k) override {
-    if (!root()) return;
-    const double n = static_cast<double>(setup_.spheres.size());
-    std::ostringstream j;
-    j.precision(10);
-    j << "{\n  \"name\": \"" << c_.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n  \"backend\": \""
-      << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n  \"status\": \"" << status
-      << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << json_escape(message) << "\",\n"
-      << "  \"distributed\": {\"ranks\": " << domain::comm::size() << ", \"dem\": \"every process\"},\n"
-      << "  \"particles\": {\"fluid\": 0, \"wall\": 0, \"body\": 0, \"sphere\": " << setup_.spheres.size() << "},\n"
-      << "  \"dem\": {\"dt\": " << dt_ << ", \"bonds\": " << bonds_ << ", \"broken_bonds\": " << solver_.broken_bonds()
-      << "},\n  \"steps\": " << k.steps << ",\n  \"simulated_time\": " << k.t << ",\n  \"wall_seconds\": " << k.wall
-      << ",\n  \"loop_steps\": " << k.loop_steps << ",\n  \"loop_seconds\": " << k.loop_wall
-      << ",\n  \"particle_steps_per_second\": "
-      << (k.loop_wall > 0 ? n * static_cast<double>(k.loop_steps) / k.loop_wall : 0.0)
-      << ",\n  \"removed\": {\"total\": 0},\n  \"peak_rss_bytes\": " << peak_rss_bytes() << "\n}\n";
-    io::write_file_atomic((out_ / "summary.json").string(), j.str());
+  RunCounts counts() override {
+    RunCounts n;
+    n.spheres = n.stepped = setup_.spheres.size();
+    n.distributed = "{\"ranks\": " + std::to_string(domain::comm::size()) + ", \"dem\": \"every process\"}";
+    n.dem = true;
+    n.dem_dt = static_cast<double>(dt_);
+    n.bonds = bonds_;
+    n.broken_bonds = solver_.broken_bonds();
+    n.peak_rss = peak_rss_bytes();
+    return n;
   }
 
   [[nodiscard]] std::string progress() const override {
@@ -191,7 +170,7 @@ private:
   dem::DemSolver solver_;
   MovingBodies bodies_; // DEM walls with a motion
   std::filesystem::path out_;
-  io::PvdCollection pvd_;
+  io::FrameSeries spheres_;
   DemWallFrames dem_walls_; // the moving meshes of every frame
   long bonds_ = 0, steps_ = 0;
   Real dt_ = 0;

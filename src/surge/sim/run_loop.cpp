@@ -1,6 +1,9 @@
 #include "surge/sim/run_loop.hpp"
 
+#include "surge/core/error.hpp"
 #include "surge/io/atomic_file.hpp"
+#include "surge/io/case_reader.hpp"
+#include "surge/sim/run_summary.hpp"
 #include "surge/sim/run_support.hpp"
 
 #include <algorithm>
@@ -88,7 +91,7 @@ public:
   // 0; the final state written unless it was just written (the end on an output time).
   int finish(const std::string& failure) {
     if (!failure.empty()) {
-      s_.write_summary("diverged", 3, failure, clock());
+      write_summary("diverged", 3, failure);
       if (root_)
         std::fprintf(stderr,
                      "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or dem.dt_factor, "
@@ -103,7 +106,7 @@ public:
       (void)write_output(last);
     }
     const std::string status = interrupted ? "interrupted" : "completed";
-    s_.write_summary(status, interrupted ? 130 : 0, interrupted ? "stopped by the user" : "", clock());
+    write_summary(status, interrupted ? 130 : 0, interrupted ? "stopped by the user" : "");
     if (!quiet_) s_.report_end(interrupted ? "interrupted" : "done", clock());
     return interrupted ? 130 : 0;
   }
@@ -111,6 +114,11 @@ public:
 private:
   LoopClock clock() const {
     return LoopClock{t_, s_.steps(), s_.steps() - steps0_, seconds_since(wall0_), seconds_since(loop0_)};
+  }
+  void write_summary(const std::string& status, int code, const std::string& message) {
+    const RunCounts n = s_.counts(); // collective
+    if (root_)
+      io::write_file_atomic((out_ / "summary.json").string(), summary_json(c_, n, status, code, message, clock()));
   }
   void sample() {
     auto v = s_.sample(t_);
@@ -133,7 +141,7 @@ private:
     s_.save(k); // collective in a distributed run (a gather)
     if (root_) io::write_checkpoint((out_ / "checkpoint.bin").string(), k);
     wall_checkpoints_.written();
-    s_.write_summary("running", 0, "", clock());
+    write_summary("running", 0, "");
   }
   bool write_output(std::string& failure) {
     if (!s_.write_frame(frame_, t_, failure)) return false; // the last good files stay
@@ -174,6 +182,17 @@ private:
   bool stop_ = false; // Ctrl-C, agreed by every process
 };
 } // namespace
+
+void prepare_output(const Case& c, const std::string& out_dir) {
+  std::filesystem::create_directories(std::filesystem::path(out_dir) / "particles");
+  io::write_file_atomic((std::filesystem::path(out_dir) / "case.yaml").string(), io::to_yaml(c));
+}
+
+void check_restart_gauges(const io::Checkpoint& ck, std::size_t gauges, const std::string& path) {
+  if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges + 1)
+    throw InputError(path, 0, "gauges",
+                     "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
+}
 
 int run_loop(const Case& c, const RunOptions& opt, Stepper& s, const io::Checkpoint* restart, Clock::time_point wall0) {
   Loop loop(c, opt, s, wall0);

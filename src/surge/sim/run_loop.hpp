@@ -15,6 +15,8 @@
 
 namespace surge::sim {
 
+struct RunCounts;
+
 // Where the loop stands, for the summary and the progress line.
 struct LoopClock {
   double t = 0;
@@ -43,8 +45,9 @@ public:
   virtual void save(io::Checkpoint& k) = 0;
   // A restart: the times of the frames already written, for the .pvd collections.
   virtual void restored(const std::vector<double>& frame_times) = 0;
-  virtual void write_summary(const std::string& status, int code, const std::string& message,
-                             const LoopClock& clock) = 0;
+  // What summary.json says of the run (sim/run_summary.hpp). Collective in a distributed
+  // run (every process takes part; rank 0's counts are written).
+  virtual RunCounts counts() = 0;
   // Appended to the progress line (after time, percent, steps/s, dt and ETA).
   [[nodiscard]] virtual std::string progress() const { return ""; }
   // The last line printed ("done: ...").
@@ -52,6 +55,13 @@ public:
   // The process that writes the files and prints (rank 0 of a distributed run).
   [[nodiscard]] virtual bool root() const { return true; }
 };
+
+// A run's output folder, once every input check has passed: particles/ and case.yaml
+// (the case as read, every default written out).
+void prepare_output(const Case& c, const std::string& out_dir);
+// What every restart checks whatever the model: the checkpoint's gauges are the case's
+// (`path`: the checkpoint, for the message).
+void check_restart_gauges(const io::Checkpoint& ck, std::size_t gauges, const std::string& path);
 
 // Runs the case with `s` from t = 0, or from the checkpoint `restart` (the model's own
 // state already restored from it by the stepper); returns the exit code (0, 3, 130).

@@ -1,7 +1,6 @@
 #include "surge/sim/simulation.hpp"
 
 #include "surge/core/error.hpp"
-#include "surge/core/version.hpp"
 #include "surge/coupling/sph_dem_coupling.hpp"
 #include "surge/geometry/particle_generators.hpp"
 #include "surge/geometry/raster.hpp"
@@ -14,6 +13,7 @@
 #include "surge/sim/distributed_run.hpp"
 #include "surge/sim/moving_bodies.hpp"
 #include "surge/sim/run_loop.hpp"
+#include "surge/sim/run_summary.hpp"
 #include "surge/sim/run_support.hpp"
 #include "surge/sim/wall_leaks.hpp"
 #include "surge/sph/gauges.hpp"
@@ -42,48 +42,11 @@ constexpr double assumed_particle_steps_per_s = 2.0e6;
 // Peak memory per particle (solver buffers 118 B + host copies for output), docs/benchmarks.md.
 constexpr double bytes_per_particle_estimate = 150.0;
 
+// A run's removals, and the fluid found inside walls at outputs.
 struct Totals {
-  long removed_domain = 0, removed_density = 0, non_finite = 0;
-  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}; // where (absolute)
-  LeakRecord leaks;                                          // fluid found inside walls at outputs
-  [[nodiscard]] long removed() const { return removed_domain + removed_density + non_finite; }
+  Removals removed;
+  LeakRecord leaks;
 };
-
-// Particle counts of a run beyond the fluid and wall ones of InitialState.
-struct ExtraCounts {
-  std::size_t body = 0, spheres = 0;
-};
-
-std::string summary_json(const Case& c, const sph::InitialState& init, const ExtraCounts& extra,
-                         const std::string& status, int code, long steps, double t, double wall, long loop_steps,
-                         double loop_wall, const Totals& tot, long n_now, double rss, const std::string& distributed,
-                         const std::string& message) {
-  std::ostringstream j;
-  j.precision(10);
-  const double n_all = static_cast<double>(init.n_fluid + init.n_wall + extra.body);
-  const std::string msg = json_escape(message);
-  j << "{\n  \"name\": \"" << c.name << "\",\n  \"surge_version\": \"" << version_string << "\",\n"
-    << "  \"backend\": \"" << par::backend_name() << "\",\n  \"threads\": " << par::threads() << ",\n"
-    << "  \"distributed\": " << distributed << ",\n"
-    << "  \"status\": \"" << status << "\",\n  \"exit_code\": " << code << ",\n  \"message\": \"" << msg << "\",\n"
-    << "  \"particles\": {\"fluid\": " << init.n_fluid << ", \"wall\": " << init.n_wall << ", \"body\": " << extra.body
-    << ", \"sphere\": " << extra.spheres << ", \"now\": " << n_now << "},\n"
-    << "  \"steps\": " << steps << ",\n  \"simulated_time\": " << t << ",\n  \"wall_seconds\": " << wall << ",\n"
-    << "  \"loop_steps\": " << loop_steps << ",\n  \"loop_seconds\": " << loop_wall << ",\n"
-    << "  \"particle_steps_per_second\": "
-    << (loop_wall > 0 ? n_all * static_cast<double>(loop_steps) / loop_wall : 0.0) << ",\n"
-    << "  \"fluid_particle_steps_per_second\": "
-    << (loop_wall > 0 ? static_cast<double>(init.n_fluid) * static_cast<double>(loop_steps) / loop_wall : 0.0) << ",\n"
-    << "  \"removed\": {\"total\": " << tot.removed() << ", \"left_domain\": " << tot.removed_domain
-    << ", \"density_out_of_range\": " << tot.removed_density << ", \"non_finite\": " << tot.non_finite;
-  if (tot.removed_domain + tot.removed_density > 0)
-    j << ", \"where\": {\"min\": [" << tot.lo.x << ", " << tot.lo.y << ", " << tot.lo.z << "], \"max\": [" << tot.hi.x
-      << ", " << tot.hi.y << ", " << tot.hi.z << "]}";
-  j << "},\n"
-    << "  \"in_walls\": " << tot.leaks.json() << ",\n"
-    << "  \"peak_rss_bytes\": " << rss << ",\n  \"bytes_per_particle\": " << (n_all > 0 ? rss / n_all : 0.0) << "\n}\n";
-  return j.str();
-}
 
 // Share of spheres touching another one (gap below a tenth of the smaller radius);
 // brute force, on at most 20,000 spheres (beyond that the assembly counts as dense).
@@ -282,24 +245,20 @@ public:
   SphStepper(const Case& c, const RunOptions& opt, io::Checkpoint* ck)
       : c_(c), opt_(opt), init_(sph::build_initial_state(c)), bodies_(c, &init_), cp_(coupled_parts(c, init_)),
         solver_(sph::solver_config(c), init_, DistributedRun::enabled() ? &none_ : nullptr), gauges_(c, init_),
-        hazard_(c, init_), extra_{cp_ ? cp_->coupling->n_body() : 0, cp_ ? cp_->setup.spheres.size() : 0},
-        dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
-        walls_pvd_((out_ / "walls.pvd").string()), fluid_pvd_((out_ / "fluid.pvd").string()),
+        hazard_(c, init_), dist_(c, solver_, cp_ ? cp_->coupling.get() : nullptr), out_(opt.out_dir), leaks_(c),
+        walls_(opt.out_dir, "walls"), fluid_(opt.out_dir, "fluid"),
         dt_min_(c.time.dt_min > 0 ? c.time.dt_min : 1e-3 * first_dt(c)),
         max_removed_(c.sph.max_removed_share * static_cast<double>(init_.n_fluid)) {
     if (cp_) {
-      spheres_pvd_.emplace((out_ / "spheres.pvd").string());
+      spheres_.emplace(opt.out_dir, "spheres");
       dem_walls_.emplace(out_, bodies_.moves_dem());
     }
     if (ck) check_restart(*ck);
-    if (root()) {
-      std::filesystem::create_directories(out_ / "particles");
-      io::write_file_atomic((out_ / "case.yaml").string(), io::to_yaml(c));
-    }
+    if (root()) prepare_output(c, opt.out_dir);
     if (ck) {
-      tot_.removed_domain = ck->removed_domain;
-      tot_.removed_density = ck->removed_density;
-      tot_.non_finite = ck->non_finite;
+      tot_.removed.domain = ck->removed_domain;
+      tot_.removed.density = ck->removed_density;
+      tot_.removed.non_finite = ck->non_finite;
       dist_.start(std::move(ck->particles), ck->steps); // a checkpoint of any number of processes
       // The moving walls placed at the checkpoint's time, as the straight run placed them
       // (their positions the checkpoint's, bit for bit; ghost offsets and faces turned).
@@ -311,9 +270,8 @@ public:
       ck->particles = {};
     } else {
       if (root()) {
-        io::write_particles_vtp((out_ / "particles" / "walls_0000.vtp").string(), init_.particles, init_.origin,
-                                {Kind::Wall});
-        walls_pvd_.add(0.0, "particles/walls_0000.vtp");
+        io::write_particles_vtp(walls_.path(0), init_.particles, init_.origin, {Kind::Wall});
+        walls_.add(0, 0.0);
       }
       dist_.start(init_.particles);
       bodies_.place(solver_, 0.0); // their velocities at t = 0
@@ -342,9 +300,9 @@ public:
     bodies_.place(solver_, t); // the run loop's new time, the same double
     if (cp_) bodies_.place(*cp_->dem, t);
     dist_.combine(s, stop, checkpoint_due);
-    for (Totals* x : {&tot_, &since_output_}) {
-      x->removed_domain += s.removed_domain;
-      x->removed_density += s.removed_density;
+    for (Removals* x : {&tot_.removed, &since_output_}) {
+      x->domain += s.removed_domain;
+      x->density += s.removed_density;
       x->non_finite += s.non_finite;
       if (s.removed_domain + s.removed_density > 0) {
         for (int k = 0; k < 3; ++k) {
@@ -361,10 +319,11 @@ public:
     } else if (s.non_finite > 0) {
       m << s.non_finite << " particles have non-finite position, velocity or density";
       failure = m.str();
-    } else if (static_cast<double>(tot_.removed()) > max_removed_ && init_.n_fluid > 0) {
-      m << tot_.removed() << " of " << init_.n_fluid
-        << " fluid particles removed (limit sph.max_removed_share = " << c_.sph.max_removed_share << "; "
-        << tot_.removed_domain << " left the domain, " << tot_.removed_density << " density out of range)";
+    } else if (static_cast<double>(tot_.removed.total()) > max_removed_ && init_.n_fluid > 0) {
+      const Removals& r = tot_.removed;
+      m << r.total() << " of " << init_.n_fluid
+        << " fluid particles removed (limit sph.max_removed_share = " << c_.sph.max_removed_share << "; " << r.domain
+        << " left the domain, " << r.density << " density out of range)";
       failure = m.str();
     } else if (s.dt < dt_min_ && s.dt < dt_max * (1 - 1e-9)) {
       m << "the time step fell to " << s.dt << " s, below time.dt_min = " << dt_min_ << " s";
@@ -380,21 +339,10 @@ public:
     dist_.sync();
     hazard_.sample(t, solver_, dist_.distribution());
     if (bodies_.any()) gauges_.set_bodies(bodies_.states(t));
-    std::vector<dem::Sphere> sp;
-    std::vector<Vec3> ff, fm;
-    if (cp_) {
-      sp = cp_->dem->spheres();
-      ff = cp_->dem->external_forces();
-      fm = cp_->dem->external_torques();
-    }
+    std::optional<DemGauges> dem;
+    if (cp_) dem.emplace(c_, cp_->setup, *cp_->dem, bodies_, true);
     return gauges_.sample(
-        solver_,
-        [&](const GaugeSpec& g) {
-          if (g.type == GaugeType::Body) return bodies_.dem_gauge_value(g, t);
-          return g.type == GaugeType::DemWall ? dem_wall_gauge_value(g, c_, cp_->setup, *cp_->dem)
-                                              : sphere_gauge_value(g, sp, ff, fm, init_.origin);
-        },
-        dist_.distribution());
+        solver_, [&](const GaugeSpec& g) { return dem ? dem->value(g, t) : 0.0; }, dist_.distribution());
   }
 
   bool write_frame(int frame, double t, std::string& failure) override {
@@ -402,16 +350,13 @@ public:
     dist_.sync();
     solver_.refresh();
     dist_.gather(host_, false);
-    char name[64];
-    std::snprintf(name, sizeof name, "fluid_%04d.vtp", frame);
     const bool quiet = opt_.quiet || !root();
     if (root()) {
-      io::write_particles_vtp((out_ / "particles" / name).string(), host_, init_.origin, {Kind::Fluid});
-      fluid_pvd_.add(t, std::string("particles/") + name);
+      io::write_particles_vtp(fluid_.path(frame), host_, init_.origin, {Kind::Fluid});
+      fluid_.add(frame, t);
       if (cp_) {
-        std::snprintf(name, sizeof name, "spheres_%04d.vtp", frame);
-        io::write_spheres_vtp((out_ / "particles" / name).string(), sphere_frame(*cp_->dem), init_.origin);
-        spheres_pvd_->add(t, std::string("particles/") + name);
+        io::write_spheres_vtp(spheres_->path(frame), sphere_frame(*cp_->dem), init_.origin);
+        spheres_->add(frame, t);
         dem_walls_->write(*cp_->dem, frame, t, init_.origin);
       }
       if (bodies_.sph_count() > 0) write_walls(frame, t);
@@ -427,21 +372,21 @@ public:
                      opt_.progress_tty ? "\n" : "", t, in_walls.count, in_walls.wall.c_str(), in_walls.lo.x,
                      in_walls.hi.x, in_walls.lo.y, in_walls.hi.y, in_walls.lo.z, in_walls.hi.z);
     }
-    const Totals& so = since_output_;
-    if (so.removed() > 0 && !quiet)
+    const Removals& so = since_output_;
+    if (so.total() > 0 && !quiet)
       std::fprintf(stderr,
                    "%st = %.4f s: removed %ld fluid particles since the last output (%ld left the domain, %ld density "
                    "out of range, %ld non-finite) within x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m\n",
-                   opt_.progress_tty ? "\n" : "", t, so.removed(), so.removed_domain, so.removed_density, so.non_finite,
-                   so.lo.x, so.hi.x, so.lo.y, so.hi.y, so.lo.z, so.hi.z);
+                   opt_.progress_tty ? "\n" : "", t, so.total(), so.domain, so.density, so.non_finite, so.lo.x, so.hi.x,
+                   so.lo.y, so.hi.y, so.lo.z, so.hi.z);
     since_output_ = {};
     return true;
   }
 
   void save(io::Checkpoint& k) override {
-    k.removed_domain = tot_.removed_domain;
-    k.removed_density = tot_.removed_density;
-    k.non_finite = tot_.non_finite;
+    k.removed_domain = tot_.removed.domain;
+    k.removed_density = tot_.removed.density;
+    k.non_finite = tot_.removed.non_finite;
     dist_.gather(k.particles, true);
     if (cp_) k.dem_state = cp_->dem->save();
     k.body_state = bodies_.save();
@@ -449,36 +394,36 @@ public:
   }
 
   void restored(const std::vector<double>& frame_times) override {
-    std::vector<std::pair<double, std::string>> entries;
-    for (int k = 0; k < static_cast<int>(frame_times.size()); ++k) {
-      char name[64];
-      std::snprintf(name, sizeof name, "particles/fluid_%04d.vtp", k);
-      entries.emplace_back(frame_times[static_cast<std::size_t>(k)], name);
-    }
-    fluid_pvd_.restore(entries);
-    if (bodies_.sph_count() > 0) { // the walls of every frame
-      auto walls = entries;
-      for (auto& e : walls) e.second.replace(e.second.find("fluid_"), 6, "walls_");
-      walls_pvd_.restore(walls);
-    } else {
-      walls_pvd_.restore({{0.0, "particles/walls_0000.vtp"}});
-    }
+    fluid_.restored(frame_times);
+    // The walls of every frame when they move; else the one file of the start.
+    walls_.restored(bodies_.sph_count() > 0 ? frame_times : std::vector<double>{0.0});
     if (cp_) {
-      for (auto& e : entries) e.second.replace(e.second.find("fluid_"), 6, "spheres_");
-      spheres_pvd_->restore(entries);
+      spheres_->restored(frame_times);
       dem_walls_->restored(frame_times);
     }
   }
 
-  void write_summary(const std::string& status, int code, const std::string& msg, const LoopClock& k) override {
-    // Collective: every process takes part, rank 0 writes (RSS summed over processes).
-    const long n_now = dist_.owned_particles();
+  RunCounts counts() override {
+    // Collective: every process takes part (RSS summed over processes).
+    RunCounts n;
+    n.fluid = init_.n_fluid;
+    n.wall = init_.n_wall;
+    if (cp_) {
+      n.body = cp_->coupling->n_body();
+      n.spheres = cp_->setup.spheres.size();
+      n.dem = true;
+      n.dem_dt = static_cast<double>(cp_->coupling->dt_dem());
+      n.bonds = cp_->bonds;
+      n.broken_bonds = cp_->dem->broken_bonds();
+    }
+    n.stepped = n.fluid + n.wall + n.body;
+    n.fluid_now = dist_.owned_particles();
+    n.removed = tot_.removed;
+    n.in_walls = tot_.leaks.json();
     dist_.measure_waits();
-    const double rss = dist_.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
-    if (root())
-      io::write_file_atomic((out_ / "summary.json").string(),
-                            summary_json(c_, init_, extra_, status, code, k.steps, k.t, k.wall, k.loop_steps,
-                                         k.loop_wall, tot_, n_now, rss, dist_.summary_json(), msg));
+    n.distributed = dist_.summary_json();
+    n.peak_rss = dist_.active() ? DistributedRun::total(peak_rss_bytes()) : peak_rss_bytes();
+    return n;
   }
 
   void report_end(const std::string& status, const LoopClock& k) override {
@@ -488,7 +433,7 @@ public:
                  "%s: %ld steps to t = %.4g s in %.1f s wall, %.3g particle-steps/s (%zu fluid + %zu wall), %ld fluid "
                  "particles removed\n  output in %s\n",
                  status.c_str(), k.steps, k.t, k.wall, n * static_cast<double>(k.loop_steps) / k.loop_wall,
-                 init_.n_fluid, init_.n_wall, tot_.removed(), out_.string().c_str());
+                 init_.n_fluid, init_.n_wall, tot_.removed.total(), out_.string().c_str());
   }
 
   [[nodiscard]] bool root() const override { return DistributedRun::root(); }
@@ -504,10 +449,8 @@ private:
   // start, before any output, from the initial state).
   void write_walls(int frame, double t) {
     if (frame == 0) return;
-    char name[64];
-    std::snprintf(name, sizeof name, "walls_%04d.vtp", frame);
-    io::write_particles_vtp((out_ / "particles" / name).string(), host_, init_.origin, {Kind::Wall});
-    walls_pvd_.add(t, std::string("particles/") + name);
+    io::write_particles_vtp(walls_.path(frame), host_, init_.origin, {Kind::Wall});
+    walls_.add(frame, t);
   }
 
   // maps/: the hazard maps as GeoTIFFs in the terrain's coordinate system, all of them and
@@ -537,9 +480,7 @@ private:
                            "; restart with the case.yaml of that run");
     if (hazard_.enabled()) hazard_.restore(ck.hazard_state, path);
     bodies_.restore(ck.body_state, path);
-    if (ck.gauge_rows.empty() || ck.gauge_rows.front().size() != gauges_.names().size() + 1)
-      throw InputError(path, 0, "gauges",
-                       "the checkpoint's gauges differ from the case's; restart with the case.yaml of that run");
+    check_restart_gauges(ck, gauges_.names().size(), path);
     if (ck.dem_state.empty() != !cp_)
       throw InputError(path, 0, "dem",
                        cp_ ? "the checkpoint holds no DEM spheres but the case has them; restart with the case.yaml "
@@ -563,15 +504,15 @@ private:
   sph::WcsphSolver solver_;
   sph::Gauges gauges_;
   sph::HazardMaps hazard_;
-  ExtraCounts extra_;
   DistributedRun dist_; // built with MPI: slabs of particles, one per process
   std::filesystem::path out_;
   WallLeaks leaks_;
-  io::PvdCollection walls_pvd_, fluid_pvd_;
-  std::optional<io::PvdCollection> spheres_pvd_;
+  io::FrameSeries walls_, fluid_;
+  std::optional<io::FrameSeries> spheres_;
   std::optional<DemWallFrames> dem_walls_; // the DEM's moving meshes of every frame
   particles::HostParticles host_;
-  Totals tot_, since_output_;
+  Totals tot_;
+  Removals since_output_;
   double dt_min_, max_removed_;
 };
 
