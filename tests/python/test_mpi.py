@@ -2,7 +2,8 @@
 bits -- gauges, every particle file, the checkpoint -- on a dam break, on the coupled
 slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
 on Archimedes with mDBC and the symplectic integrator, on
-the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move);
+the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move),
+on a periodic flume with a damping zone and on a dam break with a symmetry plane (images);
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -164,6 +165,22 @@ check(len(g1) == len(g3) and worst <= 1e-5,
       f"per_sphere on 3 processes: sphere forces within 1e-5 of one process (worst {worst:.1e} of max |Fz|)")
 s1 = summary(ps[3])
 check(s1["distributed"]["ranks"] == 3, "per_sphere run on 3 processes")
+
+# --- images (issue 33): a flume periodic across its width with a moving paddle and an
+# absorbing zone (slabs along x, images along y on every process), and the demo dam break
+# with a symmetry plane at its far end across the decomposed axis (x)
+fl = runs_on([1, 2, 3], "absorbing_flume", os.path.join(CASES, "absorbing_flume.yaml"),
+             ["--set", "time.end=0.04", "--set", "time.output_every=0.02"])
+for n in (2, 3):
+    same_files(fl[1], fl[n], f"periodic flume with a paddle and a damping zone, 1 and {n} processes")
+mirror_case = os.path.join(WORK, "dambreak_mirror.yaml")
+with open(os.path.join(CASES, "demo_dambreak.yaml")) as f:
+    text = f.read()
+with open(mirror_case, "w") as f:
+    f.write(text.replace("max: [0.584, 0.1, 0.6]}", "max: [0.584, 0.1, 0.6], symmetry: [xmax]}")
+            .replace("open: [zmax]", "open: [zmax, xmax]"))
+mir = runs_on([1, 3], "dambreak_mirror", mirror_case, ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
+same_files(mir[1], mir[3], "dam break with a symmetry plane across the slabs, 1 and 3 processes")
 
 # --- bad input: every process stops, one message, exit 2, nothing written
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])

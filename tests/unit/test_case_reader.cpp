@@ -236,3 +236,71 @@ TEST(CaseReader, PackRadiusRange) {
   expect_error(head + "csv: spheres.csv, material: rock, radius_min: 0.006}]\n", 9, "dem.packs.0",
                "do not apply to a CSV list");
 }
+
+// Issue 33: periodic and symmetry faces, damping zones.
+namespace {
+std::string slab(const std::string& domain_extra, const std::string& open = "[zmax, ymin, ymax]",
+                 const std::string& extra = "", const std::string& width = "0.06") {
+  return "name: slab\ndp: 0.01\ntime: {end: 0.1, output_every: 0.05}\n"
+         "domain: {min: [0, 0, 0], max: [0.3, " +
+         width + ", 0.2]" + domain_extra +
+         "}\n"
+         "fluid: [{box: {min: [0, 0, 0], max: [0.3, " +
+         width +
+         ", 0.1]}}]\n"
+         "walls: [{name: tank, box: {min: [0, 0, 0], max: [0.3, " +
+         width + ", 0.2]}, open: " + open + "}]\n" + extra;
+}
+} // namespace
+
+TEST(CaseReader, ImageFacesAndDamping) {
+  const Case c = io::read_case_text(slab(", periodic: [ymin, ymax], symmetry: [xmin]", "[zmax, ymin, ymax, xmin]",
+                                         "damping: [{face: xmax, length: 0.1}]\n"),
+                                    "t.yaml");
+  EXPECT_TRUE(c.periodic[1] && !c.periodic[0] && !c.periodic[2]);
+  EXPECT_TRUE(c.symmetry[0] && !c.symmetry[1]);
+  ASSERT_EQ(c.damping.size(), 1U);
+  EXPECT_EQ(c.damping[0].face, Face::XMax);
+  EXPECT_DOUBLE_EQ(c.damping[0].length, 0.1);
+  EXPECT_DOUBLE_EQ(c.damping[0].rate, 10.0);
+  // Written back and read again: the same faces and zones.
+  const Case d = io::read_case_text(io::to_yaml(c), "again.yaml");
+  EXPECT_EQ(d.periodic, c.periodic);
+  EXPECT_EQ(d.symmetry, c.symmetry);
+  ASSERT_EQ(d.damping.size(), 1U);
+  EXPECT_DOUBLE_EQ(d.damping[0].length, 0.1);
+}
+
+TEST(CaseReader, ImageFaceInputErrors) {
+  expect_error(slab(", periodic: [ymin]"), 4, "domain.periodic", "come in pairs");
+  expect_error(slab(", periodic: [ymin, ymax, ymin]"), 4, "domain.periodic", "listed twice");
+  expect_error(slab(", periodic: [ymin, ymax]", "[zmax]"), 6, "walls.0.open", "add ymin to 'open'");
+  expect_error(slab(", symmetry: [ymax]", "[zmax]"), 6, "walls.0.open", "add ymax to 'open'");
+  expect_error(slab(", periodic: [ymin, ymax], symmetry: [ymax]"), 4, "domain.symmetry", "periodic already");
+  expect_error(slab(", symmetry: [ymax, ymax]", "[zmax, ymax]"), 4, "domain.symmetry", "listed twice");
+  // A period under two kernel radii (4 h = 4.8 cm at dp = 1 cm).
+  expect_error(slab(", periodic: [ymin, ymax]", "[zmax, ymin, ymax]", "", "0.04"), 4, "domain.periodic",
+               "at least two kernel radii");
+  // A wall beyond a symmetry face (water beyond the domain is refused before).
+  std::string beyond = slab(", symmetry: [xmax]", "[zmax, xmax]");
+  beyond.replace(beyond.find("}]\n", beyond.find("walls:")), 3,
+                 "}, {name: block, box: {min: [0.25, 0, 0], max: [0.35, 0.06, 0.05]}, solid: true}]\n");
+  expect_error(beyond, 0, "walls.1.box", "beyond the symmetry face xmax");
+}
+
+TEST(CaseReader, DampingInputErrors) {
+  expect_error(slab("", "[zmax]", "damping: [{face: xmax, length: 0.5}]\n"), 7, "damping.0.length",
+               "shorter than the domain");
+  expect_error(slab("", "[zmax]", "damping: [{face: xmax, length: -0.1}]\n"), 7, "damping.0.length", "positive");
+  expect_error(slab("", "[zmax]", "damping: [{face: xmax, length: 0.1, rate: 0}]\n"), 7, "damping.0.rate", "positive");
+  expect_error(slab("", "[zmax]", "damping: [{face: xmux, length: 0.1}]\n"), 7, "damping.0.face", "unknown face");
+  expect_error(slab("", "[zmax]", "damping: [{length: 0.1}]\n"), 7, "damping.0.face", "is required");
+  expect_error(slab("", "[zmax]", "damping: [{face: xmax, length: 0.1}, {face: xmax, length: 0.2}]\n"), 7,
+               "damping.1.face", "given already");
+  expect_error(slab(", periodic: [ymin, ymax]", "[zmax, ymin, ymax]", "damping: [{face: ymax, length: 0.01}]\n"), 7,
+               "damping.0.face", "periodic or symmetry face");
+  expect_error(slab(", symmetry: [xmin]", "[zmax, xmin]", "damping: [{face: xmax, length: 0.2}]\n"), 7,
+               "damping.0.length", "past the middle");
+  expect_error(slab("", "[zmax]", "damping: [{face: xmax, length: 0.1, speed: 3}]\n"), 7, "damping.0.speed",
+               "unknown key");
+}

@@ -4,6 +4,7 @@
 #include "surge/core/types.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -63,6 +64,15 @@ struct FluidRegion {
 };
 
 enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };
+
+// An absorbing zone (damping): the last `length` of the domain before `face`, in which the
+// water's velocity relaxes towards zero (sph/damping.hpp).
+struct DampingSpec {
+  Face face = Face::XMax;
+  double length = 0; // [m]
+  double rate = 10;  // relaxation rate at the face [1/s]
+  int line = 0;
+};
 
 // A wall's prescribed motion (motion/motion_law.hpp): a law chosen by name and the
 // parameters it reads (each law's entry in motion/motion_laws.cpp says which). The law
@@ -221,6 +231,13 @@ struct Case {
   TimeConfig time;
   Vec3d gravity{0, 0, -9.81};
   Box domain;
+  // domain.periodic: the axes whose two faces are one (particles leaving through one enter
+  // at the other, neighbours are found across them).
+  std::array<bool, 3> periodic{};
+  // domain.symmetry: the faces (indexed by Face) that are mirror planes (the water near one
+  // sees its mirror image, so half a symmetric tank gives the whole tank's answer).
+  std::array<bool, 6> symmetry{};
+  std::vector<DampingSpec> damping;
   SphConfig sph;
   std::vector<FluidRegion> fluid;
   std::vector<WallSpec> walls;
@@ -229,6 +246,14 @@ struct Case {
   CouplingConfig coupling;
   HazardConfig hazard;
 
+  [[nodiscard]] bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+  [[nodiscard]] bool any_symmetry() const {
+    return std::any_of(symmetry.begin(), symmetry.end(), [](bool b) { return b; });
+  }
+  // Faces of either kind: their images (domain/images.hpp) supply what lies beyond.
+  [[nodiscard]] bool image_face(int face) const {
+    return periodic[static_cast<std::size_t>(face / 2)] || symmetry[static_cast<std::size_t>(face)];
+  }
   [[nodiscard]] bool coupled() const { return dem.active() && !fluid.empty(); }
   // The wall (SPH) or DEM wall of that name, or null.
   [[nodiscard]] const WallSpec* wall_named(const std::string& n) const {

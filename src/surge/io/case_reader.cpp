@@ -214,8 +214,9 @@ Face parse_face(const Reader& r, const YAML::Node& n, const std::string& key) {
   r.fail(n, key, "unknown face '" + s + "'; use xmin, xmax, ymin, ymax, zmin or zmax");
 }
 
-Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path) {
-  r.check_keys(n, path, {"min", "max"});
+Box parse_box(const Reader& r, const YAML::Node& n, const std::string& path,
+              const std::vector<std::string>& keys = {"min", "max"}) {
+  r.check_keys(n, path, keys);
   Box b{r.require<Vec3d>(n, path, "min"), r.require<Vec3d>(n, path, "max")};
   for (int k = 0; k < 3; ++k)
     if (!(b.max[k] > b.min[k])) r.fail(n["max"], Reader::join(path, "max"), "every component of max must exceed min");
@@ -560,6 +561,118 @@ void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c
   }
 }
 
+// domain.periodic: faces in pairs, each period at least two kernel radii long (an image
+// band of one interaction reach must not reach past the next period but one).
+void parse_periodic(const Reader& r, const YAML::Node& d, Case& c) {
+  const auto p = d["periodic"];
+  if (!p.IsDefined()) return;
+  if (!p.IsSequence()) r.fail(p, "domain.periodic", "expected a list of faces in pairs, like [ymin, ymax]");
+  std::array<int, 6> given{};
+  for (std::size_t k = 0; k < p.size(); ++k) ++given[static_cast<std::size_t>(parse_face(r, p[k], "domain.periodic"))];
+  for (std::size_t a = 0; a < 3; ++a) {
+    const int lo = given[2 * a], hi = given[2 * a + 1];
+    if (lo > 1 || hi > 1) r.fail(p, "domain.periodic", "a face is listed twice");
+    if (lo != hi)
+      r.fail(p, "domain.periodic",
+             std::string("periodic faces come in pairs: '") + face_name(static_cast<Face>(2 * a + (lo ? 0 : 1))) +
+                 "' needs '" + face_name(static_cast<Face>(2 * a + (lo ? 1 : 0))) + "'");
+    if (!lo) continue;
+    const double len = c.domain.max[static_cast<int>(a)] - c.domain.min[static_cast<int>(a)];
+    const double radius = 2 * c.h(); // the Wendland kernel's support
+    if (len < 2 * radius * (1 - 1e-9)) {
+      std::ostringstream m;
+      m << "the domain is " << len << " m long along "
+        << "xyz"[a] << ": a periodic length must be at least two kernel radii (4 h = " << 2 * radius << " m)";
+      r.fail(p, "domain.periodic", m.str());
+    }
+    c.periodic[a] = true;
+  }
+}
+
+// domain.symmetry: any faces, none of them periodic too.
+void parse_symmetry(const Reader& r, const YAML::Node& d, Case& c) {
+  const auto p = d["symmetry"];
+  if (!p.IsDefined()) return;
+  if (!p.IsSequence()) r.fail(p, "domain.symmetry", "expected a list of faces, like [ymax]");
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Face f = parse_face(r, p[k], "domain.symmetry");
+    const auto i = static_cast<std::size_t>(f);
+    if (c.symmetry[i]) r.fail(p[k], "domain.symmetry", "a face is listed twice");
+    if (c.periodic[i / 2])
+      r.fail(p[k], "domain.symmetry", std::string("'") + face_name(f) + "' is periodic already (domain.periodic)");
+    c.symmetry[i] = true;
+  }
+}
+
+// damping: zones at domain faces that are neither periodic nor symmetry, each shorter than
+// the domain along its axis, one per face.
+DampingSpec parse_damping(const Reader& r, const YAML::Node& n, const std::string& path, const Case& c) {
+  r.check_keys(n, path, keys_under("damping[]"));
+  DampingSpec d;
+  d.line = n.Mark().is_null() ? 0 : n.Mark().line + 1;
+  if (!n["face"].IsDefined())
+    r.fail(n, Reader::join(path, "face"), "is required (xmin, xmax, ymin, ymax, zmin or zmax)");
+  d.face = parse_face(r, n["face"], Reader::join(path, "face"));
+  d.length = r.require<double>(n, path, "length");
+  d.rate = r.get(n, path, "rate", d.rate);
+  const auto f = static_cast<int>(d.face);
+  const int a = f / 2;
+  const double extent = c.domain.max[a] - c.domain.min[a];
+  if (!(d.length > 0) || !(d.length < extent)) {
+    std::ostringstream m;
+    m << "must be positive and shorter than the domain along "
+      << "xyz"[a] << " (" << extent << " m)";
+    r.fail(n["length"], Reader::join(path, "length"), m.str());
+  }
+  if (!(d.rate > 0) || !std::isfinite(d.rate)) r.fail(n["rate"], Reader::join(path, "rate"), "must be positive [1/s]");
+  if (c.image_face(f))
+    r.fail(n["face"], Reader::join(path, "face"),
+           std::string("'") + face_name(d.face) + "' is a periodic or symmetry face: water there is not to be damped");
+  const int opposite = f ^ 1;
+  if (c.symmetry[static_cast<std::size_t>(opposite)] && d.length > extent / 2)
+    r.fail(n["length"], Reader::join(path, "length"),
+           std::string("reaches past the middle towards the symmetry face ") + face_name(static_cast<Face>(opposite)));
+  for (const DampingSpec& o : c.damping)
+    if (o.face == d.face) r.fail(n["face"], Reader::join(path, "face"), "a damping zone at this face is given already");
+  return d;
+}
+
+// Walls and water end at a periodic or symmetry face (the images supply the rest): nothing
+// of them may lie beyond one, and a box tank leaves such faces open.
+void check_within_image_faces(const Reader& r, const YAML::Node& root, const Case& c) {
+  if (!c.any_periodic() && !c.any_symmetry()) return;
+  const double tol = 1e-9 * (1 + norm(c.domain.max - c.domain.min));
+  for (int face = 0; face < 6; ++face) {
+    if (!c.image_face(face)) continue;
+    const int a = face / 2;
+    const bool hi = face % 2 == 1;
+    const std::string what = c.periodic[static_cast<std::size_t>(a)] ? "periodic" : "symmetry";
+    const auto beyond = [&](const Box& b) {
+      return hi ? b.max[a] > c.domain.max[a] + tol : b.min[a] < c.domain.min[a] - tol;
+    };
+    const std::string where = std::string(" beyond the ") + what + " face " + face_name(static_cast<Face>(face));
+    for (std::size_t i = 0; i < c.fluid.size(); ++i)
+      if (!c.fluid[i].reservoir && beyond(c.fluid[i].box))
+        r.fail(root["fluid"][i]["box"], "fluid." + std::to_string(i) + ".box",
+               "water reaches" + where + " (the images supply what lies beyond; end the box at the face)");
+    for (std::size_t i = 0; i < c.walls.size(); ++i) {
+      const WallSpec& w = c.walls[i];
+      const std::string key = "walls." + std::to_string(i);
+      if (w.is_mesh)
+        r.fail(root["walls"][i], key,
+               "meshes and terrains are not yet allowed with periodic or symmetry faces (their wall layers cross "
+               "them); use box walls");
+      if (beyond(w.box)) r.fail(root["walls"][i]["box"], key + ".box", "the wall reaches" + where);
+      if (w.solid) continue;
+      const auto f = static_cast<Face>(face);
+      if (std::find(w.open.begin(), w.open.end(), f) == w.open.end())
+        r.fail(root["walls"][i], key + ".open",
+               std::string("a tank at a ") + what + " face leaves it open: add " + face_name(f) +
+                   " to 'open' (its wall layers would lie beyond it)");
+    }
+  }
+}
+
 // The component a gauge reads, checked against its type's choices (core/gauge_types.hpp).
 void parse_component(const Reader& r, const YAML::Node& g, const std::string& path, GaugeSpec& gs) {
   const GaugeTypeInfo& t = gauge_type(gs.type);
@@ -714,6 +827,10 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
       if (gauge_type(c.gauges[i].type).water)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere, dem_wall or body gauges");
+  if (c.any_periodic() && c.dem.active())
+    r.fail(root["domain"]["periodic"], "domain.periodic", "periodic faces do not yet carry DEM spheres (SPH only)");
+  if (c.any_symmetry() && c.dem.active())
+    r.fail(root["domain"]["symmetry"], "domain.symmetry", "symmetry faces do not yet carry DEM spheres (SPH only)");
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0))
@@ -747,8 +864,10 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (c.time.gauge_every == 0) c.time.gauge_every = c.time.output_every / 10;
   c.gravity = r.get(root, "", "gravity", c.gravity);
   if (!root["domain"].IsDefined()) r.fail(root, "domain", "is required");
-  c.domain = parse_box(r, root["domain"], "domain");
+  c.domain = parse_box(r, root["domain"], "domain", keys_under("domain"));
   parse_section(r, root, "sph", sph_fields(), c.sph);
+  parse_periodic(r, root["domain"], c);
+  parse_symmetry(r, root["domain"], c);
   for_each_item(r, root, "fluid", "expected a list of regions, like [{box: {min: [..], max: [..]}}]",
                 [&](const YAML::Node& f, const std::string& path) { c.fluid.push_back(parse_fluid(r, f, path, c)); });
   std::size_t i = 0;
@@ -756,6 +875,10 @@ Case parse(const YAML::Node& root, Reader& r) {
     c.walls.push_back(parse_wall(r, w, path, i++, c));
   });
   check_fluid_in_tanks(r, root, c);
+  check_within_image_faces(r, root, c);
+  for_each_item(
+      r, root, "damping", "expected a list of zones, like [{face: xmax, length: 1.0}]",
+      [&](const YAML::Node& z, const std::string& path) { c.damping.push_back(parse_damping(r, z, path, c)); });
   std::set<std::string> names;
   for_each_item(r, root, "gauges", "expected a list of gauges", [&](const YAML::Node& g, const std::string& path) {
     c.gauges.push_back(parse_gauge(r, g, path, c, names));
@@ -1003,7 +1126,23 @@ std::string to_yaml(const Case& c) {
   e << YAML::Key << "gravity" << YAML::Value;
   write_vec(e, c.gravity);
   e << YAML::Key << "domain" << YAML::Value;
-  write_box(e, c.domain);
+  if (c.any_periodic() || c.any_symmetry()) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "min" << YAML::Value;
+    write_vec(e, c.domain.min);
+    e << YAML::Key << "max" << YAML::Value;
+    write_vec(e, c.domain.max);
+    const auto faces = [&](const char* key, auto listed) {
+      e << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (int f = 0; f < 6; ++f)
+        if (listed(f)) e << face_name(static_cast<Face>(f));
+      e << YAML::EndSeq;
+    };
+    if (c.any_periodic()) faces("periodic", [&](int f) { return c.periodic[static_cast<std::size_t>(f / 2)]; });
+    if (c.any_symmetry()) faces("symmetry", [&](int f) { return c.symmetry[static_cast<std::size_t>(f)]; });
+    e << YAML::EndMap;
+  } else {
+    write_box(e, c.domain);
+  }
   SphConfig sph = c.sph;
   sph.hmax = c.water_depth(); // the depth the speed of sound came from, whatever gave it
   write_section(e, "sph", sph_fields(), sph);
@@ -1023,6 +1162,13 @@ std::string to_yaml(const Case& c) {
   }
   e << YAML::EndSeq;
   write_walls(e, c.walls);
+  if (!c.damping.empty()) {
+    e << YAML::Key << "damping" << YAML::Value << YAML::BeginSeq;
+    for (const auto& d : c.damping)
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "face" << YAML::Value << face_name(d.face) << YAML::Key
+        << "length" << YAML::Value << d.length << YAML::Key << "rate" << YAML::Value << d.rate << YAML::EndMap;
+    e << YAML::EndSeq;
+  }
   e << YAML::Key << "gauges" << YAML::Value << YAML::BeginSeq;
   for (const auto& g : c.gauges) write_gauge(e, g);
   e << YAML::EndSeq;

@@ -432,6 +432,12 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"domain", "mapping", "required", "", "", "the box water may occupy (grown by the wall layers)"});
   k.push_back({"domain.min", vec, "required", "m", "", "lowest corner"});
   k.push_back({"domain.max", vec, "required", "m", "> min", "highest corner"});
+  k.push_back({"domain.periodic", "list of faces", "[]", "", "in pairs: xmin xmax | ymin ymax | zmin zmax",
+               "faces that are one: water leaving through one enters at the other, and sees across it (SPH; each "
+               "period at least 4 h long; walls and water end at the faces, box tanks leave them open)"});
+  k.push_back({"domain.symmetry", "list of faces", "[]", "", "xmin xmax ymin ymax zmin zmax, none periodic",
+               "mirror planes: the water near one sees its mirror image, so half a symmetric tank gives the whole "
+               "tank's answer (SPH; walls and water end at the faces, box tanks leave them open)"});
   k.push_back({"sph", "mapping", "", "", "", "the water's model"});
   add(k, "sph.", sph_fields());
   k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});
@@ -453,6 +459,18 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
                "the ground: an elevation grid (GeoTIFF, ESRI ASCII, ...) cropped to the domain, solid below"});
   motion_keys(k);
+  k.push_back({"damping", "list", "", "", "",
+               "absorbing zones (SPH): the water's velocity relaxes towards zero near a domain face, so that a long "
+               "tank can be cut short without the wave reflecting (sph/damping.hpp)"});
+  k.push_back({"damping[].face", "choice", "required", "",
+               "xmin | xmax | ymin | ymax | zmin | zmax, not periodic or "
+               "symmetry",
+               "the face the zone ends at"});
+  k.push_back({"damping[].length", "number", "required", "m", "> 0, shorter than the domain",
+               "the zone's depth from the face"});
+  k.push_back({"damping[].rate", "number", "10", "1/s", "> 0",
+               "relaxation rate at the face; it rises from 0 at the zone's inner edge as the square of the depth "
+               "into the zone (v <- v (1 - dt rate s^2))"});
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
   k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
   k.push_back({"gauges[].type", "choice", "required", "", gauge_type_list(" | ", " | "), "what is measured"});

@@ -59,4 +59,22 @@ void for_each_state_field(A& a, B& b, F&& f) {
   f("id", a.id, b.id, kSorted | kCheckpoint, decltype(&a.id){});
 }
 
+// Keeps the particles i with keep(i), in order (every field that holds one value per
+// particle, the halo flags included).
+template <class K>
+void keep_if(HostParticles& h, K&& keep) {
+  const std::size_t n = h.size();
+  std::vector<char> k(n);
+  for (std::size_t i = 0; i < n; ++i) k[i] = keep(i) ? 1 : 0;
+  auto filter = [&](auto& v) {
+    if (v.size() != n) return;
+    std::size_t o = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (k[i]) v[o++] = v[i];
+    v.resize(o);
+  };
+  for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned, const auto*) { filter(v); });
+  filter(h.halo);
+}
+
 } // namespace surge::particles

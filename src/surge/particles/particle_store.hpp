@@ -25,8 +25,9 @@ struct ParticleView {
   Real* vsig = nullptr; // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
   std::uint8_t* kind = nullptr;
   std::uint32_t* id = nullptr;
-  // Distributed runs: halo[i] != 0 for a copy of a particle another process owns, whose
-  // state is this process's only to read (null: every particle is owned).
+  // halo[i] != 0 for a copy whose state is this process's only to read: 1 a copy of a
+  // particle another process owns (a distributed run), 2 and up a periodic or mirrored image
+  // (domain/images.hpp). Null: every particle is owned.
   const std::uint8_t* halo = nullptr;
   [[nodiscard]] SURGE_HD bool owned(int i) const { return !halo || !halo[i]; }
 };
@@ -40,7 +41,19 @@ public:
   void upload(HostParticles&& h);
   // A distributed store carries the halo flag of every particle and sorts each cell by
   // particle id (UniformGrid::sort), so that its sums do not depend on the distribution.
-  void set_distributed(bool on) { distributed_ = on; }
+  void set_distributed(bool on) {
+    distributed_ = on;
+    halos_ = on || images_;
+  }
+  // A store with periodic or mirrored images carries the halo flag too (not the sort by id).
+  void set_images(bool on) {
+    images_ = on;
+    halos_ = distributed_ || on;
+  }
+  [[nodiscard]] bool has_halos() const { return halos_; }
+  [[nodiscard]] bool distributed() const { return distributed_; }
+  // The halo flags, writable (periodic images mark their own; null without halos).
+  [[nodiscard]] std::uint8_t* halo_flags() { return halos_ ? halo_.data() : nullptr; }
   // Copies the current state to the host (pressure included); with `history`
   // also vel_prev and rho_prev (for checkpoints).
   void download(HostParticles& h, bool history = false) const;
@@ -64,6 +77,9 @@ public:
   Scratch exchange_scratch();
   void remove(const std::vector<std::uint32_t>& idx);
   void append(const HostParticles& h);
+  // Appends copies of the m particles at idx (execution space) at the end, every state field
+  // and the halo flag copied (the caller then marks and moves them); returns the first copy's index.
+  int append_copies(const std::uint32_t* idx, int m);
   // Allocates pos_prev (scratch of the symplectic scheme; null in views until then).
   void reserve_position_scratch();
   [[nodiscard]] ParticleView view();
@@ -97,7 +113,9 @@ private:
   Fields f_;
   par::Buffer<Vec3> pos_prev_, acc_;
   par::Buffer<Real> drho_, vsig_;
-  bool distributed_ = false;
+  bool distributed_ = false; // sorts by id
+  bool images_ = false;
+  bool halos_ = false; // carries halo_ (distributed or with images)
   par::Buffer<std::uint8_t> cls_, halo_;
   par::Buffer<std::uint32_t> tmpu_;    // the exchange's scratch (distributed runs only)
   par::Buffer<std::uint32_t> idx_;     // the exchange's selection

@@ -1,5 +1,6 @@
 #include "surge/sim/distributed_run.hpp"
 
+#include "surge/core/error.hpp"
 #include "surge/domain/comm.hpp"
 
 #include <chrono>
@@ -19,7 +20,16 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
     : solver_(solver) {
   if (!domain::comm::built_with_mpi()) return;
   const Vec3 lo{}, hi(c.domain.max - c.domain.min);
-  const int axis = domain::longest_axis(lo, hi);
+  // Slabs along the longest axis that is not periodic (the periodic images are each
+  // process's own; the slab faces do not wrap).
+  Vec3 extent = hi;
+  for (int k = 0; k < 3; ++k)
+    if (c.periodic[static_cast<std::size_t>(k)]) extent[k] = 0;
+  if (extent.x == 0 && extent.y == 0 && extent.z == 0 && ranks() > 1)
+    throw InputError(c.source, 0, "domain.periodic",
+                     "a domain periodic along every axis runs on one process only (the slabs need an axis that "
+                     "is not periodic)");
+  const int axis = extent.x == 0 && extent.y == 0 && extent.z == 0 ? 0 : domain::longest_axis(lo, extent);
   slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach());
   dist_ = slabs_->distribution();
   solver.set_distribution(dist_);

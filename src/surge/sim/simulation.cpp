@@ -225,6 +225,13 @@ int check(const Case& c) {
                 "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
                 "in_walls)\n",
                 a.x, b.x, a.y, b.y, a.z, b.z);
+    std::string faces;
+    for (int f = 0; f < 6; ++f)
+      if (c.image_face(f)) faces += std::string(faces.empty() ? "" : ", ") + face_name(static_cast<Face>(f));
+    if (!faces.empty())
+      std::printf("images      periodic and symmetry faces %s: water crossing one is brought back (wrapped or "
+                  "mirrored), not removed\n",
+                  faces.c_str());
   }
   std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
   std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow "

@@ -138,6 +138,9 @@ InitialState build_initial_state(const Case& c) {
   if (s.particles.size() > 2'000'000'000ULL)
     throw InputError(c.source, 0, "dp", "more than 2e9 particles; increase dp");
   std::tie(s.fluid_lo, s.fluid_hi) = fluid_region(c, s);
+  s.domain_hi = Vec3(c.domain.max - c.domain.min);
+  for (std::size_t k = 0; k < 3; ++k) s.periodic[k] = c.periodic[k] ? 1 : 0;
+  for (std::size_t f = 0; f < 6; ++f) s.symmetry[f] = c.symmetry[f] ? 1 : 0;
   return s;
 }
 

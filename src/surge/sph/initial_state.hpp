@@ -7,6 +7,7 @@
 #include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/eos_tait.hpp"
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -49,6 +50,11 @@ struct InitialState {
   // particle's cell. Fluid beyond it is removed as having left the domain; fluid that went
   // into a wall's layers stays and is counted as a leak (sim::WallLeaks), not deleted.
   Vec3 fluid_lo{}, fluid_hi{};
+  // The domain's periodic axes (Case::periodic), symmetry faces (Case::symmetry, by Face)
+  // and its faces (local: 0 and max - min).
+  std::array<int, 3> periodic{};
+  std::array<int, 6> symmetry{};
+  Vec3 domain_hi{};
 };
 
 // Density of still water at p in fluid region f: Tait density of rho0 g (top of f - z)

@@ -20,6 +20,16 @@ SolverConfig solver_config(const Case& c) {
   s.euler_every = c.sph.euler_every;
   s.rho_min = static_cast<Real>(c.sph.rho_min * c.sph.rho0);
   s.rho_max = static_cast<Real>(c.sph.rho_max * c.sph.rho0);
+  for (const DampingSpec& d : c.damping) {
+    DampingZone& z = s.damping.zone[s.damping.n++];
+    const int f = static_cast<int>(d.face);
+    z.axis = f / 2;
+    const double extent = c.domain.max[z.axis] - c.domain.min[z.axis];
+    const bool hi = f % 2 == 1; // xmax, ymax, zmax: the zone lies below the face
+    z.inner = static_cast<Real>(hi ? extent - d.length : d.length);
+    z.length = static_cast<Real>(hi ? d.length : -d.length);
+    z.rate = static_cast<Real>(d.rate);
+  }
   return s;
 }
 

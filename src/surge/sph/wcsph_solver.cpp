@@ -3,8 +3,10 @@
 #include "surge/sph/wcsph_rates_simd.hpp"
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace surge::sph {
 
@@ -156,6 +158,17 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, co
         p.rho[i] = rho;
       });
 }
+// Absorbing zones: each owned fluid particle's velocity times its zones' factor.
+void damp(const particles::ParticleView& p, DampingZones zones, Real dt) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] != fluid || !p.owned(i)) return;
+        const Real f = zones.factor(p.pos[i], dt);
+        if (f != 1) p.vel[i] = p.vel[i] * f;
+      });
+}
+
 // An axis-aligned box and its merge, for the reduction below (nvcc's extended lambdas
 // may not use types local to a function).
 struct Box2 {
@@ -203,6 +216,7 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unlo
       dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
   if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
   if (!init.moving.empty()) moving_ = MovingWalls(init, boundary_->ghost_offsets() != nullptr);
+  set_up_images(init);
   // The grid covers that region and every particle.
   Vec3 lo = dom_lo_, hi = dom_hi_;
   for (const auto& p : init.particles.pos)
@@ -211,6 +225,48 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unlo
       hi[k] = std::fmax(hi[k], p[k]);
     }
   grid_.set_spec(neighbour::make_grid(lo, hi, cfg_.prm.kernel.support(), 2)); // cells of h: 125 h^3 scanned, not 216
+}
+
+void WcsphSolver::set_up_images(const InitialState& init) {
+  // Images refreshed before every rates pass need the reach of one evaluation across a
+  // face: a support for the water, and for a wall model with ghost nodes (mdbc) the ghosts'
+  // longest offset along that axis plus a support around them (a floor's ghosts lie above
+  // it: they add nothing across a vertical face); half an h more for what moves within a
+  // step after the rebuild.
+  const double support = cfg_.prm.kernel.support(), margin = 0.5 * static_cast<double>(cfg_.prm.kernel.h);
+  domain::ImageFrame f;
+  for (std::size_t a = 0; a < 3; ++a) {
+    f.periodic[a] = init.periodic[a];
+    f.mirror_lo[a] = init.symmetry[2 * a];
+    f.mirror_hi[a] = init.symmetry[2 * a + 1];
+  }
+  if (!f.any()) return;
+  std::uint32_t max_id = 0;
+  for (const std::uint32_t id : init.particles.id) max_id = std::max(max_id, id + 1);
+  for (int k = 0; k < 3; ++k) {
+    f.hi[k] = init.domain_hi[k];
+    f.len[k] = f.hi[k] - f.lo[k];
+    if (!f.has_images(k)) continue;
+    double ghost = 0;
+    for (const Vec3& g : init.boundary_ghost) ghost = std::max(ghost, std::fabs(static_cast<double>(g[k])));
+    const double reach = init.boundary_ghost.empty() ? support : ghost + support;
+    f.band[k] = static_cast<Real>(reach + margin);
+    if (f.periodic[static_cast<std::size_t>(k)] && 3 * f.len[k] < f.band[k])
+      throw std::invalid_argument("a periodic length shorter than a third of the image band");
+    // Fluid beyond a periodic or symmetry face is brought back at the next rebuild, not removed.
+    const auto a = static_cast<std::size_t>(k);
+    if (f.periodic[a] || f.mirror_lo[a]) dom_lo_[k] = std::fmin(dom_lo_[k], f.lo[k] - f.band[k]);
+    if (f.periodic[a] || f.mirror_hi[a]) dom_hi_[k] = std::fmax(dom_hi_[k], f.hi[k] + f.band[k]);
+  }
+  images_ = domain::Images(f, max_id);
+  store_.set_images(true);
+}
+
+void WcsphSolver::download(particles::HostParticles& h, bool history) const {
+  store_.download(h, history);
+  if (!images_.on()) return;
+  particles::keep_if(h, [&](std::size_t i) { return h.halo[i] < domain::image_flag; });
+  if (!store_.distributed()) h.halo.clear();
 }
 
 void WcsphSolver::set_distribution(const Distribution& d) {
@@ -239,7 +295,9 @@ int WcsphSolver::owned_count() {
 void WcsphSolver::sort_and_rates() {
   {
     const auto t = par::timed(par::Phase::Sort);
+    if (images_.on()) images_.rebuild(store_);
     store_.sort(grid_);
+    if (images_.on()) images_.link(store_);
   }
   rates();
   fresh_ = true;
@@ -248,9 +306,11 @@ void WcsphSolver::sort_and_rates() {
 void WcsphSolver::rates() {
   const auto p = store_.view();
   const auto g = grid_.view(p.pos, p.kind);
+  images_.refresh(p); // the images hold their particles' state (after a predictor step too)
   if (boundary_->prepares()) {
     const auto t = par::timed(par::Phase::Boundary);
     boundary_->prepare(cfg_.prm, g, p);
+    images_.refresh(p); // ... and their wall densities (those of the images' own ghosts are not whole)
   }
   WallChoice* choices = hold_.choices(p.n);
   const auto t = par::timed(par::Phase::Rates);
@@ -322,6 +382,10 @@ StepStats WcsphSolver::step(double dt_max) {
     rates();
     const auto t = par::timed(par::Phase::Integrate);
     detail::symplectic_correct(p, dt, rho0, gh, faces, dmin);
+  }
+  if (cfg_.damping.n > 0) {
+    const auto t = par::timed(par::Phase::Integrate);
+    detail::damp(p, cfg_.damping, dt);
   }
   ++steps_;
   fresh_ = false;

@@ -1,6 +1,7 @@
 // Weakly-compressible SPH solver (SPEC §2): owns the particles and advances them.
 #pragma once
 #include "surge/core/distribution.hpp"
+#include "surge/domain/images.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
 #include "surge/particles/particle_store.hpp"
@@ -63,7 +64,7 @@ public:
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
-    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes();
+    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes() + images_.bytes();
   }
   [[nodiscard]] neighbour::GridView grid_view() {
     const particles::ParticleView v = store_.view();
@@ -72,7 +73,10 @@ public:
   particles::ParticleView view() { return store_.view(); }
   // What the rates kernel reads of the walls for the no-penetration condition.
   [[nodiscard]] WallHoldView hold_view() const { return hold_.view(); }
-  void download(particles::HostParticles& h, bool history = false) const { store_.download(h, history); }
+  // The particles as stored, images left out (a distributed run's copies kept).
+  void download(particles::HostParticles& h, bool history = false) const;
+  // The periodic and mirror images (off unless the case has periodic or symmetry faces).
+  [[nodiscard]] const domain::Images& images() const { return images_; }
   // Continues from a checkpoint: particles with their integration history, and the step count.
   void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
@@ -95,6 +99,7 @@ private:
   struct Unloaded {};
   WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/);
   void sort_and_rates();
+  void set_up_images(const InitialState& init);
   void rates(); // the wall model's boundary densities, EOS and rates at the current positions
   double dt_from_rates();
   int flag_removals(StepStats& s);
@@ -103,6 +108,7 @@ private:
   std::unique_ptr<BoundaryModel> boundary_; // sph.boundary
   WallHold hold_;                           // sph.no_penetration
   MovingWalls moving_;                      // walls with a motion
+  domain::Images images_;                   // domain.periodic and domain.symmetry
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;

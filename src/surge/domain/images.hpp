@@ -1,0 +1,114 @@
+// Images across the domain's periodic and symmetry faces: copies of the particles near such
+// a face, placed beyond it (one period away beyond the opposite face, or mirrored in the
+// face itself), so that every neighbour loop (rates, wall models, gauges) sees the water
+// across the face without knowing of it. The images are rebuilt before every sort (the old
+// ones dropped, fluid that crossed a face wrapped in or reflected back, fresh copies made,
+// all in the execution space) and, before every rates pass, refreshed in place from the
+// particles they copy, so that a band of one interaction reach suffices whatever the
+// integrator. Images are halo particles (ParticleView::owned is false): never counted,
+// integrated for their own sake, removed, written or checkpointed.
+#pragma once
+#include "surge/par/parallel.hpp"
+#include "surge/particles/particle_store.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace surge::domain {
+
+// The faces with images of a domain (local coordinates) and how far beyond a face they reach.
+struct ImageFrame {
+  std::array<int, 3> periodic{};  // 1: the two faces of this axis are one
+  std::array<int, 3> mirror_lo{}; // 1: the face lo of this axis is a symmetry plane
+  std::array<int, 3> mirror_hi{}; // 1: ... and hi
+  Vec3 lo{}, hi{}, len{};         // the faces, and hi - lo, per axis
+  Vec3 band{};                    // images lie within this distance of the faces, per axis
+  [[nodiscard]] SURGE_HD bool has_images(int k) const { return periodic[k] || mirror_lo[k] || mirror_hi[k]; }
+  [[nodiscard]] bool any() const { return has_images(0) || has_images(1) || has_images(2); }
+};
+
+// The halo flag of an image (ParticleView::halo; 1 is a distributed run's copy) is
+// image_flag plus a bit per axis on which the image is mirrored (1 x, 2 y, 4 z).
+inline constexpr std::uint8_t image_flag = 2;
+
+// The shifts that put coordinate x of axis k within the band of the domain, the shift 0
+// included. Periodic axes: s periods (-3 to 3), lo - band <= x + s len < hi + band. Symmetry
+// faces: -1 the mirror in lo (2 lo - x), +1 the mirror in hi, when x is within the band of it.
+struct AxisShifts {
+  int first = 0, count = 1;
+};
+[[nodiscard]] SURGE_HD inline AxisShifts axis_shifts(const ImageFrame& f, int k, Real x) {
+  if (f.periodic[k]) {
+    AxisShifts a{0, 0};
+    for (int s = -3; s <= 3; ++s) {
+      const Real y = x + static_cast<Real>(s) * f.len[k];
+      if (y < f.lo[k] - f.band[k] || y >= f.hi[k] + f.band[k]) continue;
+      if (a.count == 0) a.first = s;
+      ++a.count;
+    }
+    if (a.count == 0) return {0, 1}; // outside the band itself (the step's checks see it): no images
+    return a;
+  }
+  const int first = f.mirror_lo[k] && x - f.lo[k] < f.band[k] ? -1 : 0;
+  const int last = f.mirror_hi[k] && f.hi[k] - x < f.band[k] ? 1 : 0;
+  return {first, last - first + 1};
+}
+
+// Coordinate x of axis k moved by shift s (axis_shifts): the one formula of the rebuild and
+// the refresh, so that an image refreshed without moving keeps its bits.
+[[nodiscard]] SURGE_HD inline Real shifted(const ImageFrame& f, int k, Real x, int s) {
+  if (s == 0) return x;
+  if (f.periodic[k]) return x + static_cast<Real>(s) * f.len[k];
+  return (s < 0 ? 2 * f.lo[k] : 2 * f.hi[k]) - x;
+}
+
+// A fluid particle that crossed a face during a step, put back: wrapped into [lo, hi) once
+// across a periodic face (a particle crosses at most one period a step), or reflected in a
+// symmetry face with its velocities' normal components reversed (its mirror image crossed
+// the other way).
+SURGE_HD inline void bring_back(const ImageFrame& f, Vec3& x, Vec3& v, Vec3& v_prev) {
+  for (int k = 0; k < 3; ++k) {
+    if (f.periodic[k]) {
+      if (x[k] >= f.hi[k])
+        x[k] -= f.len[k];
+      else if (x[k] < f.lo[k])
+        x[k] += f.len[k];
+      continue;
+    }
+    const int s = f.mirror_lo[k] && x[k] < f.lo[k] ? -1 : (f.mirror_hi[k] && x[k] > f.hi[k] ? 1 : 0);
+    if (s == 0) continue;
+    x[k] = shifted(f, k, x[k], s);
+    v[k] = -v[k];
+    v_prev[k] = -v_prev[k];
+  }
+}
+
+class Images {
+public:
+  Images() = default; // off
+  // `max_id`: the largest particle id + 1 (the images find their particles by id).
+  Images(const ImageFrame& f, std::uint32_t max_id);
+  [[nodiscard]] bool on() const { return frame_.any(); }
+  [[nodiscard]] const ImageFrame& frame() const { return frame_; }
+  // Before a sort: drops the images, brings the fluid that crossed a face back in
+  // (bring_back), and appends an image of each particle (owned, or a distributed run's
+  // copy) for every combination of shifts that puts it within the band.
+  void rebuild(particles::ParticleStore& store);
+  // After a sort: where each particle's id now lies, for refresh.
+  void link(particles::ParticleStore& store);
+  // Before a rates pass (and again after the wall model's): every image takes its
+  // particle's state (position moved by whole periods or mirrored, velocities' mirrored
+  // components reversed; density, pressure, kind as they are).
+  void refresh(const particles::ParticleView& p) const;
+  [[nodiscard]] long count() const { return images_; }
+  [[nodiscard]] std::size_t bytes() const { return where_.bytes() + count_.bytes() + src_.bytes() + shift_.bytes(); }
+
+private:
+  ImageFrame frame_;
+  std::uint32_t max_id_ = 0;
+  long images_ = 0;
+  par::Buffer<std::uint32_t> where_;               // by id: the index of the particle an image copies
+  par::Buffer<std::uint32_t> count_, src_, shift_; // the rebuild's scratch
+};
+
+} // namespace surge::domain
