@@ -15,9 +15,9 @@ using namespace surge;
 namespace {
 domain::ImageFrame frame() {
   domain::ImageFrame f;
-  f.periodic = {1, 0, 0};
-  f.mirror_lo = {0, 1, 0};
-  f.mirror_hi = {0, 0, 1};
+  f.periodic[0] = 1;  // x periodic
+  f.mirror_lo[1] = 1; // a mirror at y = 0
+  f.mirror_hi[2] = 1; // and at z = 0.4
   f.hi = Vec3{1, 0.5f, 0.4f};
   f.len = f.hi - f.lo;
   f.band = Vec3{0.1f, 0.1f, 0.1f};

@@ -3,6 +3,7 @@
 #include "surge/algo/algo.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace surge::domain {
 
@@ -147,15 +148,21 @@ Images::Images(const ImageFrame& f, std::uint32_t max_id) : frame_(f), max_id_(m
 void Images::rebuild(particles::ParticleStore& store) {
   const int n = store.size();
   count_.resize(static_cast<std::size_t>(n) + 1);
-  std::uint8_t* halo = store.halo_flags();
+  const auto flags = [&store] { // re-read after appending: the buffer may have moved
+    std::uint8_t* h = store.halo_flags();
+    if (h == nullptr) throw std::logic_error("images need a store that carries halo flags (set_images)");
+    return h;
+  };
+  std::uint8_t* halo = flags();
   const long dropped = detail::drop_wrap_count(store.view(), halo, frame_, count_.data());
   store.add_removed(static_cast<int>(dropped));
   const std::uint32_t m = algo::exclusive_scan(count_.data(), count_.data(), n);
   src_.resize(m);
   shift_.resize(m);
+  par::fill(shift_, 0U); // every entry is written below; the fill keeps the analyzer's reading exact
   detail::list_images(store.view(), halo, frame_, count_.data(), src_.data(), shift_.data());
   const int first = store.append_copies(src_.data(), static_cast<int>(m));
-  detail::place_images(store.view(), store.halo_flags(), frame_, first, static_cast<int>(m), shift_.data());
+  detail::place_images(store.view(), flags(), frame_, first, static_cast<int>(m), shift_.data());
   images_ = m;
 }
 

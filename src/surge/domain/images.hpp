@@ -11,18 +11,17 @@
 #include "surge/par/parallel.hpp"
 #include "surge/particles/particle_store.hpp"
 
-#include <array>
 #include <cstdint>
 
 namespace surge::domain {
 
 // The faces with images of a domain (local coordinates) and how far beyond a face they reach.
-struct ImageFrame {
-  std::array<int, 3> periodic{};  // 1: the two faces of this axis are one
-  std::array<int, 3> mirror_lo{}; // 1: the face lo of this axis is a symmetry plane
-  std::array<int, 3> mirror_hi{}; // 1: ... and hi
-  Vec3 lo{}, hi{}, len{};         // the faces, and hi - lo, per axis
-  Vec3 band{};                    // images lie within this distance of the faces, per axis
+struct ImageFrame {       // plain data: kernels capture it by value
+  int periodic[3]{};      // 1: the two faces of this axis are one
+  int mirror_lo[3]{};     // 1: the face lo of this axis is a symmetry plane
+  int mirror_hi[3]{};     // 1: ... and hi
+  Vec3 lo{}, hi{}, len{}; // the faces, and hi - lo, per axis
+  Vec3 band{};            // images lie within this distance of the faces, per axis
   [[nodiscard]] SURGE_HD bool has_images(int k) const { return periodic[k] || mirror_lo[k] || mirror_hi[k]; }
   [[nodiscard]] bool any() const { return has_images(0) || has_images(1) || has_images(2); }
 };

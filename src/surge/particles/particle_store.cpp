@@ -235,26 +235,23 @@ void ParticleStore::append(const HostParticles& h) {
 namespace detail {
 // field[n_old + k] <- field[idx[k]] for k < m (the field already grown to n_old + m).
 template <class T>
-void copy_to_tail(par::Buffer<T>& field, const std::uint32_t* idx, int m, int n_old) {
+void copy_to_tail(par::Buffer<T>& field, const std::uint32_t* idx, int m, std::size_t n_old) {
+  field.resize_keep(n_old + static_cast<std::size_t>(m));
   T* f = field.data();
+  if (f == nullptr) return; // m == 0 (the caller returns before)
   par::parallel_for(
-      m, SURGE_LAMBDA(int k) { f[n_old + k] = f[idx[k]]; });
+      m, SURGE_LAMBDA(int k) { f[n_old + static_cast<std::size_t>(k)] = f[idx[k]]; });
 }
 } // namespace detail
 
 int ParticleStore::append_copies(const std::uint32_t* idx, int m) {
   const int n_old = n_;
-  const auto n_new = static_cast<std::size_t>(n_old + m);
   if (m == 0) return n_old;
-  for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) {
-    buf.resize_keep(n_new);
-    detail::copy_to_tail(buf, idx, m, n_old);
-  });
-  if (halos_) {
-    halo_.resize_keep(n_new);
-    detail::copy_to_tail(halo_, idx, m, n_old);
-  }
-  n_ = static_cast<int>(n_new);
+  const auto old = static_cast<std::size_t>(n_old), n_new = old + static_cast<std::size_t>(m);
+  for_each_state_field(
+      f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) { detail::copy_to_tail(buf, idx, m, old); });
+  if (halos_) detail::copy_to_tail(halo_, idx, m, old);
+  n_ = n_old + m;
   acc_.resize_keep(n_new);
   for (auto* b : {&drho_, &vsig_}) b->resize_keep(n_new);
   cls_.resize(n_new);

@@ -251,12 +251,11 @@ void WcsphSolver::set_up_images(const InitialState& init) {
     for (const Vec3& g : init.boundary_ghost) ghost = std::max(ghost, std::fabs(static_cast<double>(g[k])));
     const double reach = init.boundary_ghost.empty() ? support : ghost + support;
     f.band[k] = static_cast<Real>(reach + margin);
-    if (f.periodic[static_cast<std::size_t>(k)] && 3 * f.len[k] < f.band[k])
+    if (f.periodic[k] && 3 * f.len[k] < f.band[k])
       throw std::invalid_argument("a periodic length shorter than a third of the image band");
     // Fluid beyond a periodic or symmetry face is brought back at the next rebuild, not removed.
-    const auto a = static_cast<std::size_t>(k);
-    if (f.periodic[a] || f.mirror_lo[a]) dom_lo_[k] = std::fmin(dom_lo_[k], f.lo[k] - f.band[k]);
-    if (f.periodic[a] || f.mirror_hi[a]) dom_hi_[k] = std::fmax(dom_hi_[k], f.hi[k] + f.band[k]);
+    if (f.periodic[k] || f.mirror_lo[k]) dom_lo_[k] = std::fmin(dom_lo_[k], f.lo[k] - f.band[k]);
+    if (f.periodic[k] || f.mirror_hi[k]) dom_hi_[k] = std::fmax(dom_hi_[k], f.hi[k] + f.band[k]);
   }
   images_ = domain::Images(f, max_id);
   store_.set_images(true);
