@@ -4,10 +4,16 @@
 
 * tank 1.6 m long (x), 0.1 m wide (y), water h = 0.3 m deep;
 * the slope rises from the floor at x_toe = 0.778 m towards x = 0 at 35 degrees, across the
-  width (cases/rigid_slide_slope.stl, normals up), from z = 0 to z = 0.45 m;
-* the wedge: a right triangle in x-z, its hypotenuse (0.15 m) on the slope, its top
-  horizontal and its front vertical, its lowest corner 2 cm above the still water
-  (cases/rigid_slide_wedge.stl, a closed prism across the width, normals out).
+  width, from z = 0 to z = 0.45 m, and the ground under it is closed down to the floor and
+  back to the tank's end (cases/rigid_slide_slope.stl, a prism, normals out);
+* the wedge: a right triangle in x-z, its hypotenuse (0.15 m) parallel to the slope and
+  GAP = 2 dp above it, its top horizontal and its front vertical, its lowest corner 2 cm
+  (plus the gap) above the still water (cases/rigid_slide_wedge.stl, a closed prism across
+  the width, normals out). The gap stands for the rollers or the film of water a
+  laboratory wedge runs on: with the wedge's wall particles on the slope's, no water gets
+  under it, its top and front carry the water's pressure and its face on the slope none,
+  and the rail's friction grows until it stops (docs/validation.md). Two spacings let the
+  water in (one is the wall models' own spacing, which water does not pass).
 """
 import math
 import os
@@ -29,30 +35,40 @@ def facet(f, a, b, c):
     f.write("  endloop\n endfacet\n")
 
 
+def prism(f, poly):
+    """A closed prism across the width from a convex polygon in x-z, counterclockwise
+    (x right, z up): its two ends and a face per edge, normals out."""
+    ends0 = [(x, 0, z) for x, z in poly]
+    ends1 = [(x, width, z) for x, z in poly]
+    for k in range(1, len(poly) - 1):
+        facet(f, ends0[0], ends0[k], ends0[k + 1])  # y = 0 end, normal -y
+        facet(f, ends1[0], ends1[k + 1], ends1[k])  # y = width end, normal +y
+    for k in range(len(poly)):
+        p0, q0 = ends0[k], ends0[(k + 1) % len(poly)]
+        p1, q1 = ends1[k], ends1[(k + 1) % len(poly)]
+        facet(f, p0, q1, q0)
+        facet(f, p0, p1, q1)
+
+
 x_up = x_toe - z_top / math.tan(th)
 with open(os.path.join(here, "rigid_slide_slope.stl"), "w") as f:
+    # The ground under the slope, closed (a bare slope surface left a pocket behind its top
+    # edge, x < x_up, that the set-up filled with water counted inside the slope's wall).
     f.write("solid slope\n")
-    a, b, c, d = (x_up, 0, z_top), (x_toe, 0, 0), (x_toe, width, 0), (x_up, width, z_top)
-    facet(f, a, b, c)  # normal up the slope (out of the ground)
-    facet(f, a, c, d)
+    prism(f, [(0, 0), (x_toe, 0), (x_up, z_top), (0, z_top)])
     f.write("endsolid slope\n")
 
-zb = h + 0.02  # the wedge's lowest corner B, on the slope
+GAP = 2 * 0.0125  # two spacings at the case's dp (12.5 mm)
+zb = h + 0.02  # the wedge's lowest corner B, on the slope (before the gap)
 xb = x_toe - zb / math.tan(th)
 L = 0.15
 xa, za = xb - L * math.cos(th), zb + L * math.sin(th)  # A, up the slope
 xc, zc = xb, za  # C: above B, level with A
+nx, nz = math.sin(th), math.cos(th)  # the slope's normal, out of the ground
+xa, za, xb, zb, xc, zc = xa + GAP * nx, za + GAP * nz, xb + GAP * nx, zb + GAP * nz, xc + GAP * nx, zc + GAP * nz
 with open(os.path.join(here, "rigid_slide_wedge.stl"), "w") as f:
     f.write("solid wedge\n")
-    A0, B0, C0 = (xa, 0, za), (xb, 0, zb), (xc, 0, zc)
-    A1, B1, C1 = (xa, width, za), (xb, width, zb), (xc, width, zc)
-    facet(f, A0, B0, C0)  # y = 0 side, normal -y (A, B, C run counterclockwise in x-z)
-    facet(f, A1, C1, B1)  # y = width side, normal +y
-    for p, q in ((A0, B0), (B0, C0), (C0, A0)):  # the three long faces, normals out
-        p1 = (p[0], width, p[2])
-        q1 = (q[0], width, q[2])
-        facet(f, p, q1, q)
-        facet(f, p, p1, q1)
+    prism(f, [(xa, za), (xb, zb), (xc, zc)])
     f.write("endsolid wedge\n")
 print(f"toe x = {x_toe:.4f} m, wedge corners A ({xa:.4f}, {za:.4f}), B ({xb:.4f}, {zb:.4f}), C ({xc:.4f}, {zc:.4f})")
-print(f"travel to the floor along the slope: {zb / math.sin(th):.4f} m")
+print(f"travel until its lowest corner meets the floor: {zb / math.sin(th):.4f} m along the slope")
