@@ -421,6 +421,21 @@ void dem_wall_keys(std::vector<KeyDoc>& k) {
                "spheres' forces on it join the water's"});
 }
 
+void damping_keys(std::vector<KeyDoc>& k) {
+  k.push_back({"damping", "list", "", "", "",
+               "absorbing zones (SPH): the water's velocity relaxes towards zero near a domain face, so that a long "
+               "tank can be cut short without the wave reflecting (sph/damping.hpp)"});
+  k.push_back({"damping[].face", "choice", "required", "",
+               "xmin | xmax | ymin | ymax | zmin | zmax, not periodic or "
+               "symmetry",
+               "the face the zone ends at"});
+  k.push_back({"damping[].length", "number", "required", "m", "> 0, shorter than the domain",
+               "the zone's depth from the face"});
+  k.push_back({"damping[].rate", "number", "10", "1/s", "> 0",
+               "relaxation rate at the face; it rises from 0 at the zone's inner edge as the square of the depth "
+               "into the zone (v <- v (1 - dt rate s^2))"});
+}
+
 std::vector<KeyDoc> build_keys() {
   std::vector<KeyDoc> k;
   const std::string vec = "[x, y, z]";
@@ -459,18 +474,7 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"walls[].terrain", "file", "", "", "a raster GDAL reads, projected (m)",
                "the ground: an elevation grid (GeoTIFF, ESRI ASCII, ...) cropped to the domain, solid below"});
   motion_keys(k);
-  k.push_back({"damping", "list", "", "", "",
-               "absorbing zones (SPH): the water's velocity relaxes towards zero near a domain face, so that a long "
-               "tank can be cut short without the wave reflecting (sph/damping.hpp)"});
-  k.push_back({"damping[].face", "choice", "required", "",
-               "xmin | xmax | ymin | ymax | zmin | zmax, not periodic or "
-               "symmetry",
-               "the face the zone ends at"});
-  k.push_back({"damping[].length", "number", "required", "m", "> 0, shorter than the domain",
-               "the zone's depth from the face"});
-  k.push_back({"damping[].rate", "number", "10", "1/s", "> 0",
-               "relaxation rate at the face; it rises from 0 at the zone's inner edge as the square of the depth "
-               "into the zone (v <- v (1 - dt rate s^2))"});
+  damping_keys(k);
   k.push_back({"gauges", "list", "", "", "", "quantities sampled every time.gauge_every into gauges.csv"});
   k.push_back({"gauges[].name", "text", "required", "", "unique, no commas", "the column's name"});
   k.push_back({"gauges[].type", "choice", "required", "", gauge_type_list(" | ", " | "), "what is measured"});

@@ -43,7 +43,7 @@ void ParticleStore::begin_upload(const HostParticles& h) {
 
 void ParticleStore::finish_upload(const HostParticles& h) {
   const auto n = static_cast<std::size_t>(n_);
-  if (halos_) {
+  if (halos()) {
     if (h.halo.size() == n)
       par::upload(halo_, h.halo);
     else {
@@ -68,7 +68,7 @@ void ParticleStore::download(HostParticles& h, bool history) const {
     else
       par::download(host, buf, n);
   });
-  if (halos_)
+  if (halos())
     par::download(h.halo, halo_, n);
   else
     h.halo.clear();
@@ -90,7 +90,7 @@ ParticleView ParticleStore::view() {
           vsig_.data(),
           f_.kind.data(),
           f_.id.data(),
-          halos_ ? halo_.data() : nullptr};
+          halos() ? halo_.data() : nullptr};
 }
 
 template <class T>
@@ -124,7 +124,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
     else
       reorder(buf, scratch(buf), perm);
   });
-  if (halos_) reorder(halo_, cls_, perm);
+  if (halos()) reorder(halo_, cls_, perm);
   grid.mark_wet(f_.kind.data());
   // The host knows how many were flagged, so the GPU need not report the live count.
   // The CPU builds, where the check costs nothing, verify it on every sort.
@@ -141,7 +141,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) { buf.truncate(keep); });
   acc_.truncate(keep);
   for (auto* b : {&drho_, &vsig_}) b->truncate(keep);
-  if (halos_) halo_.truncate(keep);
+  if (halos()) halo_.truncate(keep);
   return dropped;
 }
 
@@ -176,7 +176,7 @@ void ParticleStore::coordinates(int axis, std::vector<Real>& x, std::vector<std:
   std::uint8_t* st = cls_.data();
   const Vec3* pos = f_.pos.data();
   const std::uint8_t* kind = f_.kind.data();
-  const std::uint8_t* halo = halos_ ? halo_.data() : nullptr;
+  const std::uint8_t* halo = halos() ? halo_.data() : nullptr;
   const auto removed = static_cast<std::uint8_t>(Kind::Removed), fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for(
       n_, SURGE_LAMBDA(int i) {
@@ -223,7 +223,7 @@ void ParticleStore::append(const HostParticles& h) {
   for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned, const auto*) {
     detail::append_field(buf, host, n_old);
   });
-  if (halos_)
+  if (halos())
     detail::append_field(halo_, h.halo.size() == h.size() ? h.halo : std::vector<std::uint8_t>(h.size(), 0), n_old);
   n_ = static_cast<int>(n_old + h.size());
   // Rates are recomputed before they are read; these only need the new size.
@@ -250,7 +250,7 @@ int ParticleStore::append_copies(const std::uint32_t* idx, int m) {
   const auto old = static_cast<std::size_t>(n_old), n_new = old + static_cast<std::size_t>(m);
   for_each_state_field(
       f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) { detail::copy_to_tail(buf, idx, m, old); });
-  if (halos_) detail::copy_to_tail(halo_, idx, m, old);
+  if (halos()) detail::copy_to_tail(halo_, idx, m, old);
   n_ = n_old + m;
   acc_.resize_keep(n_new);
   for (auto* b : {&drho_, &vsig_}) b->resize_keep(n_new);

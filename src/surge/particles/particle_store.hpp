@@ -41,19 +41,12 @@ public:
   void upload(HostParticles&& h);
   // A distributed store carries the halo flag of every particle and sorts each cell by
   // particle id (UniformGrid::sort), so that its sums do not depend on the distribution.
-  void set_distributed(bool on) {
-    distributed_ = on;
-    halos_ = on || images_;
-  }
+  void set_distributed(bool on) { distributed_ = on; }
   // A store with periodic or mirrored images carries the halo flag too (not the sort by id).
-  void set_images(bool on) {
-    images_ = on;
-    halos_ = distributed_ || on;
-  }
-  [[nodiscard]] bool has_halos() const { return halos_; }
+  void set_images(bool on) { images_ = on; }
   [[nodiscard]] bool distributed() const { return distributed_; }
   // The halo flags, writable (periodic images mark their own; null without halos).
-  [[nodiscard]] std::uint8_t* halo_flags() { return halos_ ? halo_.data() : nullptr; }
+  [[nodiscard]] std::uint8_t* halo_flags() { return halos() ? halo_.data() : nullptr; }
   // Copies the current state to the host (pressure included); with `history`
   // also vel_prev and rho_prev (for checkpoints).
   void download(HostParticles& h, bool history = false) const;
@@ -113,9 +106,10 @@ private:
   Fields f_;
   par::Buffer<Vec3> pos_prev_, acc_;
   par::Buffer<Real> drho_, vsig_;
+  // Carries halo_ when distributed or with images.
+  [[nodiscard]] bool halos() const { return distributed_ || images_; }
   bool distributed_ = false; // sorts by id
   bool images_ = false;
-  bool halos_ = false; // carries halo_ (distributed or with images)
   par::Buffer<std::uint8_t> cls_, halo_;
   par::Buffer<std::uint32_t> tmpu_;    // the exchange's scratch (distributed runs only)
   par::Buffer<std::uint32_t> idx_;     // the exchange's selection

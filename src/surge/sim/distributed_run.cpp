@@ -25,11 +25,12 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
   Vec3 extent = hi;
   for (int k = 0; k < 3; ++k)
     if (c.periodic[static_cast<std::size_t>(k)]) extent[k] = 0;
-  if (extent.x == 0 && extent.y == 0 && extent.z == 0 && ranks() > 1)
+  const bool all_periodic = c.periodic[0] && c.periodic[1] && c.periodic[2];
+  if (all_periodic && ranks() > 1)
     throw InputError(c.source, 0, "domain.periodic",
                      "a domain periodic along every axis runs on one process only (the slabs need an axis that "
                      "is not periodic)");
-  const int axis = extent.x == 0 && extent.y == 0 && extent.z == 0 ? 0 : domain::longest_axis(lo, extent);
+  const int axis = all_periodic ? 0 : domain::longest_axis(lo, extent);
   slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach());
   dist_ = slabs_->distribution();
   solver.set_distribution(dist_);

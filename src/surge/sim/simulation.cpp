@@ -150,7 +150,21 @@ void print_terrain_warnings(const Case& c, const WallSpec& w) {
                 w.name.c_str(), std::min(g.dx, g.dy), 0.5 * c.dp);
 }
 
-// surge check's line per moving wall: its law and where it is at time.end, or its mass.
+// surge check's lines on where water is removed, and on the faces that bring it back.
+void print_removal(const Case& c, const sph::InitialState& init) {
+  const Vec3d a = Vec3d(init.fluid_lo) + init.origin, b = Vec3d(init.fluid_hi) + init.origin;
+  std::printf("removal     fluid leaving x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m is removed (the domain, "
+              "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
+              "in_walls)\n",
+              a.x, b.x, a.y, b.y, a.z, b.z);
+  std::string faces;
+  for (int f = 0; f < 6; ++f)
+    if (c.image_face(f)) faces += std::string(faces.empty() ? "" : ", ") + face_name(static_cast<Face>(f));
+  if (!faces.empty())
+    std::printf("images      periodic and symmetry faces %s: water crossing one is brought back (wrapped or "
+                "mirrored), not removed\n",
+                faces.c_str());
+}
 } // namespace
 
 int check(const Case& c) {
@@ -218,21 +232,7 @@ int check(const Case& c) {
               bytes_per_particle_estimate);
   std::printf("resolution  dp = %g m, h = %g m, water depth %g m, c0 = %g m/s\n", c.dp, c.h(), c.water_depth(),
               c.sound_speed());
-  {
-    const Vec3 lo = init.fluid_lo, hi = init.fluid_hi;
-    const Vec3d a = Vec3d(lo) + init.origin, b = Vec3d(hi) + init.origin;
-    std::printf("removal     fluid leaving x [%.3f, %.3f], y [%.3f, %.3f], z [%.3f, %.3f] m is removed (the domain, "
-                "grown to hold the wall layers); fluid inside a wall is counted at every output (summary.json: "
-                "in_walls)\n",
-                a.x, b.x, a.y, b.y, a.z, b.z);
-    std::string faces;
-    for (int f = 0; f < 6; ++f)
-      if (c.image_face(f)) faces += std::string(faces.empty() ? "" : ", ") + face_name(static_cast<Face>(f));
-    if (!faces.empty())
-      std::printf("images      periodic and symmetry faces %s: water crossing one is brought back (wrapped or "
-                  "mirrored), not removed\n",
-                  faces.c_str());
-  }
+  print_removal(c, init);
   std::printf("time step   first dt = %.3g s, about %.3g steps to t = %g s\n", dt0, steps, c.time.end);
   std::printf("run time    about %s on 2 CPU threads (assuming %.1e particle-steps/s; the step shrinks when the flow "
               "accelerates)\n",
