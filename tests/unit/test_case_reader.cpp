@@ -63,13 +63,18 @@ TEST(CaseReader, OverridesAndRoundTrip) {
 
 // Every case shipped reads back from the case.yaml a run writes: the same case (every
 // list item kind: box and mesh walls, each gauge type, DEM walls, box, mesh and CSV packs).
-// SURGE_CASES_DIR overrides the source tree's folder: the device check runs this binary in
-// a copy of the tree at another path.
+namespace {
+// The shipped cases' folder; SURGE_CASES_DIR overrides the source tree's (the device check
+// runs this binary in a copy of the tree at another path).
+std::string cases_dir() {
+  const char* dir = std::getenv("SURGE_CASES_DIR");
+  return dir != nullptr ? dir : std::string(SURGE_SOURCE_DIR) + "/cases";
+}
+} // namespace
+
 TEST(CaseReader, EveryShippedCaseRoundTrips) {
   int n = 0;
-  const char* dir = std::getenv("SURGE_CASES_DIR");
-  const std::string cases = dir != nullptr ? dir : std::string(SURGE_SOURCE_DIR) + "/cases";
-  for (const auto& f : std::filesystem::directory_iterator(cases)) {
+  for (const auto& f : std::filesystem::directory_iterator(cases_dir())) {
     if (f.path().extension() != ".yaml") continue;
     const Case c = io::read_case(f.path().string());
     const std::string once = io::to_yaml(c);
@@ -291,6 +296,22 @@ TEST(CaseReader, ImageFaceInputErrors) {
   beyond.replace(beyond.find("}]\n", beyond.find("walls:")), 3,
                  "}, {name: block, box: {min: [0.25, 0, 0], max: [0.35, 0.06, 0.05]}, solid: true}]\n");
   expect_error(beyond, 0, "walls.1.box", "beyond the symmetry face xmax");
+}
+
+TEST(CaseReader, DemWithPeriodicFaces) {
+  const std::string dem = "dem:\n  materials: [{name: rock}]\n"
+                          "  packs: [{box: {min: [0.1, 0, 0.12], max: [0.2, 0.06, 0.16]}, radius: 0.01, "
+                          "material: rock}]\n";
+  const std::string periodic = slab(", periodic: [ymin, ymax]", "[zmax, ymin, ymax]", dem, "0.1");
+  EXPECT_NO_THROW((void)io::read_case_text(periodic, "t.yaml"));
+  EXPECT_NO_THROW((void)io::read_case_text(periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: rock}]\n", "t.yaml"));
+  expect_error(periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 1, 1]}, material: rock}]\n", 0, "dem.walls.0.normal",
+               "periodic axis y");
+  const std::string mesh = cases_dir() + "/slide_slope.stl";
+  expect_error(periodic + "  walls: [{mesh: " + mesh + ", material: rock}]\n", 0, "dem.walls.0",
+               "not yet allowed with periodic");
+  expect_error(slab(", symmetry: [ymax]", "[zmax, ymax]", dem, "0.1"), 4, "domain.symmetry",
+               "do not yet carry DEM");
 }
 
 TEST(CaseReader, DampingInputErrors) {

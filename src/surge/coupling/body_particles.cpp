@@ -1,6 +1,7 @@
 #include "surge/coupling/body_particles.hpp"
 
 #include "surge/dem/rigid_state.hpp"
+#include "surge/domain/periodic.hpp"
 #include "surge/geometry/sphere_index.hpp"
 #include "surge/sph/eos_tait.hpp"
 
@@ -41,13 +42,25 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
   for (const auto& s : spheres) rmax = std::max(rmax, static_cast<double>(s.radius));
   geometry::SphereIndex index(std::max(2 * rmax, 1e-9));
   for (std::size_t k = 0; k < spheres.size(); ++k) index.add(static_cast<int>(k), Vec3d(spheres[k].pos));
-  auto inside = [&](const Vec3& p) {
-    const Vec3d x(p);
+  // (On periodic axes a sphere at one face holds water at the other: each point is
+  // tested with its images a period away too.)
+  const domain::PeriodicAxes per = domain::periodic_axes(c);
+  auto inside_at = [&](const Vec3d& x) {
     return index.any_near(x, [&](int s) {
       const Vec3d d = x - Vec3d(spheres[static_cast<std::size_t>(s)].pos);
       const double r = spheres[static_cast<std::size_t>(s)].radius;
       return dot(d, d) < r * r;
     });
+  };
+  auto inside = [&](const Vec3& p) {
+    bool in = false;
+    for (int sz = -per.on[2]; sz <= per.on[2]; ++sz)
+      for (int sy = -per.on[1]; sy <= per.on[1]; ++sy)
+        for (int sx = -per.on[0]; sx <= per.on[0]; ++sx)
+          in = in || inside_at(Vec3d(p) + Vec3d(sx * static_cast<double>(per.len.x),
+                                                sy * static_cast<double>(per.len.y),
+                                                sz * static_cast<double>(per.len.z)));
+    return in;
   };
   particles::HostParticles kept;
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
@@ -75,7 +88,8 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
     st.omega = spheres[k].omega;
     for (const auto& o : body_offsets(spheres[k].radius, c.dp, layers)) {
       const Vec3 off(o);
-      const dem::RigidPoint p = dem::rigid_point(st, off);
+      dem::RigidPoint p = dem::rigid_point(st, off);
+      per.wrap(p.pos); // in the domain, as SphDemCoupling::place_bodies puts it
       const Vec3d abs = Vec3d(p.pos) + init.origin;
       auto rho = static_cast<Real>(c.sph.rho0);
       for (const auto& f : c.fluid)

@@ -1,5 +1,7 @@
 #include "surge/coupling/sph_dem_coupling.hpp"
 
+#include "surge/domain/images.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -19,8 +21,11 @@ void collect_bodies(const particles::ParticleView& p, std::uint32_t first, Vec3*
       });
 }
 
+// (Periodic axes: a body particle lies in the domain, its sphere's centre up to half a
+// period beyond a face; the arm goes to the nearest image.)
 void sum_per_sphere(const Vec3* acc, const Vec3* pos, Real mass, const std::uint32_t* start,
-                    const dem::RigidState* state, int n_spheres, Vec3* force, Vec3* moment) {
+                    const dem::RigidState* state, int n_spheres, domain::PeriodicAxes per, Vec3* force,
+                    Vec3* moment) {
   par::parallel_for(
       n_spheres, SURGE_LAMBDA(int k) {
         Vec3 f{}, m{};
@@ -28,7 +33,7 @@ void sum_per_sphere(const Vec3* acc, const Vec3* pos, Real mass, const std::uint
         for (std::uint32_t b = start[k]; b < start[k + 1]; ++b) {
           const Vec3 fb = acc[b] * mass; // body accelerations carry no gravity (wcsph_rates)
           f += fb;
-          m += cross(pos[b] - xk, fb);
+          m += cross(per.rel(pos[b], xk), fb);
         }
         force[k] = f;
         moment[k] = m;
@@ -36,17 +41,22 @@ void sum_per_sphere(const Vec3* acc, const Vec3* pos, Real mass, const std::uint
 }
 
 // Body particles from their spheres' states; with mDBC (ghost_out not null) their ghost
-// offsets turn with them (ghost_out[id - first_boundary]).
+// offsets turn with them (ghost_out[id - first_boundary]). On periodic axes each lies in
+// the domain (its sphere may straddle a face); periodic and mirrored images are left to
+// the SPH's refresh, which moves them with their particles.
 void place(const particles::ParticleView& p, std::uint32_t first, const Vec3* offset, const std::uint32_t* owner,
-           const dem::RigidState* state, const Vec3* ghost0, Vec3* ghost_out, std::uint32_t first_boundary) {
+           const dem::RigidState* state, const Vec3* ghost0, Vec3* ghost_out, std::uint32_t first_boundary,
+           domain::PeriodicAxes per) {
   const auto body = static_cast<std::uint8_t>(Kind::Body);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
-        if (p.kind[i] != body) return;
+        if (p.kind[i] != body || (p.halo && p.halo[i] >= domain::image_flag)) return;
         const std::uint32_t b = p.id[i] - first;
         const dem::RigidState& s = state[owner[b]];
         const dem::RigidPoint r = dem::rigid_point(s, offset[b]);
-        p.pos[i] = r.pos;
+        Vec3 x = r.pos;
+        per.wrap(x);
+        p.pos[i] = x;
         p.vel[i] = r.vel;
         if (ghost_out) ghost_out[p.id[i] - first_boundary] = dem::rotate(s.q, ghost0[b]);
       });
@@ -98,7 +108,7 @@ void SphDemCoupling::sum_forces(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   dem.rigid_states(state_);
   // Written straight into the DEM's held external force and moment.
   detail::sum_per_sphere(body_acc_.data(), body_pos_.data(), sph.params().mass, start_.data(), state_.data(),
-                         n_spheres_, dem.external_force().data(), dem.external_torque().data());
+                         n_spheres_, dem.periodic(), dem.external_force().data(), dem.external_torque().data());
   if (dist_.distributed() && per_sphere_) {
     // Each process summed the body particles it owns (the others are zero); the per-sphere
     // sums are added in rank order, the same on every process.
@@ -110,7 +120,7 @@ void SphDemCoupling::place_bodies(sph::WcsphSolver& sph, dem::DemSolver& dem) {
   const auto t = par::timed(par::Phase::Coupling);
   dem.rigid_states(state_);
   detail::place(sph.view(), first_id_, offset_.data(), owner_.data(), state_.data(), ghost_.data(), sph.ghost_offsets(),
-                sph.first_boundary_id());
+                sph.first_boundary_id(), dem.periodic());
   sph.invalidate();
 }
 

@@ -123,7 +123,7 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* ma
 // history of the pair and its stored law, the rest from the two spheres and materials.
 template <class L>
 SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint32_t p, Real dist, Real dt) {
-  const PairInput in = sphere_pair_input(v.pos[a] - v.pos[b], dist, v.radius[a], v.radius[b], v.vel[a], v.omega[a],
+  const PairInput in = sphere_pair_input(v.rel(a, b), dist, v.radius[a], v.radius[b], v.vel[a], v.omega[a],
                                          v.vel[b], v.omega[b], v.mixed[v.material[a] * v.n_materials + v.material[b]]);
   return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), springs_of(v.hist[p]), dt);
 }
@@ -141,16 +141,47 @@ void pair_laws(const DemView& v, const Material* mats) {
       });
 }
 
+// The points around which a sphere's partners are searched on periodic axes: its centre
+// and each of its images (whole periods away, -2 to 2, as spheres lie within half a
+// period beyond a face) that reaches the grid [lo, hi). The period being over twice the
+// search, each partner is found once, through its nearest image.
+struct PeriodicQueries {
+  domain::PeriodicAxes per;
+  Vec3 lo, hi;
+  Real search;
+  template <class Query>
+  SURGE_HD void operator()(const Vec3& x, Query&& query) const {
+    int first[3], last[3];
+    for (int k = 0; k < 3; ++k) {
+      first[k] = per.on[k] ? -2 : 0;
+      last[k] = -first[k];
+    }
+    for (int sz = first[2]; sz <= last[2]; ++sz)
+      for (int sy = first[1]; sy <= last[1]; ++sy)
+        for (int sx = first[0]; sx <= last[0]; ++sx) {
+          const Vec3 q = x + Vec3(static_cast<Real>(sx) * per.len.x, static_cast<Real>(sy) * per.len.y,
+                                  static_cast<Real>(sz) * per.len.z);
+          bool reaches = true;
+          for (int k = 0; k < 3; ++k) reaches = reaches && q[k] >= lo[k] - search && q[k] < hi[k] + search;
+          if (reaches) query(q);
+        }
+  }
+};
+
 // List pass 1 of the DEM: each sphere lists the spheres within r_i + r_j + skin and those
 // bonded to it (within the grid's reach `search`); returns the most any sphere wanted.
 int list_spheres(const DemView& v, const neighbour::GridView& g, const ContactSlot* old_hist, Real search, Real skin,
                  std::uint32_t* a_count) {
-  return neighbour::list_partners<max_contacts>(
-      v.list, v.id, v.pos, v.n, g, old_hist, search, a_count,
-      SURGE_LAMBDA(int i, int j, Real r2, const ContactSlot* old) {
-        const Real cut = v.radius[i] + v.radius[j] + skin;
-        return r2 < cut * cut || (old != nullptr && old->bonded != 0);
-      });
+  const auto listed = SURGE_LAMBDA(int i, int j, Real r2, const ContactSlot* old) {
+    const Real cut = v.radius[i] + v.radius[j] + skin;
+    return r2 < cut * cut || (old != nullptr && old->bonded != 0);
+  };
+  if (!v.period.any())
+    return neighbour::list_partners<max_contacts>(v.list, v.id, v.pos, v.n, g, old_hist, search, a_count, listed);
+  const Vec3 ghi = g.spec.lo + Vec3(static_cast<Real>(g.spec.nx), static_cast<Real>(g.spec.ny),
+                                    static_cast<Real>(g.spec.nz)) * g.spec.cell;
+  return neighbour::list_partners<max_contacts>(v.list, v.id, v.pos, v.n, g, old_hist, search, a_count, listed,
+                                                PeriodicQueries{v.period, g.spec.lo, ghi, search});
 }
 
 // Pass 1 of a step: each pair once, by its A sphere (lower id), from the history of its
@@ -159,11 +190,10 @@ template <class L>
 void pair_pass(const DemView& v, Real dt) {
   par::parallel_for_uneven(
       v.n, SURGE_LAMBDA(int i) {
-        const Vec3 xi = v.pos[i];
         const Real ri = v.radius[i];
         // The pairs i is A of (the partner evaluates the others).
         neighbour::for_each_own_pair(v.list, i, [&](std::uint32_t, int j, std::uint32_t p) {
-          const Real dist = norm(xi - v.pos[j]);
+          const Real dist = norm(v.rel(i, j));
           const std::uint32_t partner = v.hist[p].partner;
           if (!in_contact(dist, ri + v.radius[j], v.hist[p].bonded != 0)) {
             // Not touching: the contact's history ends (the pair stays listed).
@@ -359,9 +389,20 @@ void bond(const DemView& v, const Material* mats, Real gap) {
         if (!mats[v.material[i]].bonded) return;
         neighbour::for_each_own_pair(v.list, i, [&](std::uint32_t, int j, std::uint32_t p) {
           if (!mats[v.material[j]].bonded) return;
-          if (norm(v.pos[i] - v.pos[j]) >= v.radius[i] + v.radius[j] + gap) return;
+          if (norm(v.rel(i, j)) >= v.radius[i] + v.radius[j] + gap) return;
           v.hist[p].bonded = 1;
         });
+      });
+}
+
+// Spheres more than half a period beyond a periodic face moved back by a period (at a
+// list rebuild: the list's images are found anew).
+void wrap_spheres(const DemView& v) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        Vec3 x = v.pos[i];
+        v.period.wrap(x, true);
+        v.pos[i] = x;
       });
 }
 
@@ -685,7 +726,18 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   n_pairs_ = 0;
   list_valid_ = false;
   skin_ = Real(0.1) * max_radius_;
-  grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
+  // On periodic axes the spheres lie up to half a period beyond the faces (set_periodic).
+  Vec3 glo = lo_, ghi = hi_;
+  for (int k = 0; k < 3; ++k)
+    if (period_.on[k]) {
+      if (!(period_.len[k] > 2 * list_reach() + 2 * max_radius_))
+        throw std::invalid_argument(std::string("a periodic length along ") + "xyz"[k] +
+                                    " shorter than twice the DEM's search reach plus a sphere diameter (" +
+                                    std::to_string(2 * list_reach() + 2 * max_radius_) + " m)");
+      glo[k] -= period_.len[k] / 2;
+      ghi[k] += period_.len[k] / 2;
+    }
+  grid_.set_spec(neighbour::make_grid(glo, ghi, std::max(list_reach(), Real(1e-6))));
 }
 
 DemView DemSolver::view() {
@@ -699,6 +751,7 @@ DemView DemSolver::view() {
   v.pair = pair_.data();
   v.law = law_.data();
   v.list.pair_b = pair_b_.data();
+  v.period = period_;
   return v;
 }
 
@@ -717,6 +770,7 @@ void DemSolver::sort_spheres() {
   // The pairs stay where they are; each sphere takes the range of its pairs along (they
   // are found again by partner id). The list's indices do not survive the sort:
   // rebuild_list makes new ones.
+  if (period_.any()) detail::wrap_spheres(view());
   grid_.sort(pos_.data(), nullptr, n_);
   const std::uint32_t* perm = grid_.permutation();
   DemView unused{};

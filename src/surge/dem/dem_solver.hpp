@@ -20,6 +20,7 @@
 #pragma once
 #include "surge/dem/contact_law.hpp"
 #include "surge/dem/rigid_state.hpp"
+#include "surge/domain/periodic.hpp"
 #include "surge/neighbour/pair_list.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
 #include "surge/par/phase_timer.hpp"
@@ -178,6 +179,9 @@ struct DemView {
   std::uint8_t* fixed;                // 1: not integrated
   const Vec3 *ext_force, *ext_torque; // by sphere id
   Vec3* pos_built;                    // positions when the list was built
+  domain::PeriodicAxes period;        // pairs meet through the nearest image (rel)
+  // Position of a less that of b, through b's nearest periodic image.
+  [[nodiscard]] SURGE_HD Vec3 rel(int a, int b) const { return period.rel(pos[a], pos[b]); }
 };
 
 // The CPU's batched passes (dem_simd.hpp), for spheres [begin, end): the pair pass
@@ -195,6 +199,12 @@ public:
   DemSolver(std::vector<Material> materials, std::vector<Plane> planes, Vec3 gravity, Vec3 lo, Vec3 hi,
             int contact_law = 0);
   void set_spheres(const std::vector<Sphere>& s);
+  // Periodic axes (before set_spheres): spheres meet across their faces through the
+  // nearest image, and a sphere is moved back by a period once it lies half a period
+  // beyond a face (until then it moves exactly as in a wider box). Throws
+  // std::invalid_argument for a period under twice the list's reach plus a sphere.
+  void set_periodic(const domain::PeriodicAxes& p) { period_ = p; }
+  [[nodiscard]] const domain::PeriodicAxes& periodic() const { return period_; }
   // Triangle-mesh walls (all meshes together; WallTriangle::mesh tells them apart).
   void set_wall_triangles(const std::vector<WallTriangle>& t);
   // Bonds every pair of spheres of bonded materials whose gap is below `gap` (SPEC §3,
@@ -324,6 +334,7 @@ private:
   const char* pair_pass_name_ = "off";
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
+  domain::PeriodicAxes period_{};
   int n_ = 0;
   Real max_radius_ = 0;
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;

@@ -673,6 +673,25 @@ void check_within_image_faces(const Reader& r, const YAML::Node& root, const Cas
   }
 }
 
+// DEM walls with periodic faces: planes along the periodic axes (a plane across one would
+// cut the period), no meshes yet (their triangles would need images).
+void check_dem_periodic(const Reader& r, const YAML::Node& root, const Case& c) {
+  for (std::size_t i = 0; i < c.dem.walls.size(); ++i) {
+    const DemWallSpec& w = c.dem.walls[i];
+    const std::string key = "dem.walls." + std::to_string(i);
+    if (w.is_mesh)
+      r.fail(root["dem"]["walls"][i], key,
+             "DEM meshes and terrains are not yet allowed with periodic faces (their triangles would need images); "
+             "use planes");
+    const Vec3d n = w.normal * (1.0 / norm(w.normal));
+    for (std::size_t a = 0; a < 3; ++a)
+      if (c.periodic[a] && std::fabs(n[static_cast<int>(a)]) > 1e-9)
+        r.fail(root["dem"]["walls"][i]["normal"], key + ".normal",
+               std::string("a DEM plane facing along the periodic axis ") + "xyz"[a] +
+                   " would cut the period: planes with periodic faces lie along those axes");
+  }
+}
+
 // The component a gauge reads, checked against its type's choices (core/gauge_types.hpp).
 void parse_component(const Reader& r, const YAML::Node& g, const std::string& path, GaugeSpec& gs) {
   const GaugeTypeInfo& t = gauge_type(gs.type);
@@ -827,8 +846,7 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
       if (gauge_type(c.gauges[i].type).water)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere, dem_wall or body gauges");
-  if (c.any_periodic() && c.dem.active())
-    r.fail(root["domain"]["periodic"], "domain.periodic", "periodic faces do not yet carry DEM spheres (SPH only)");
+  if (c.any_periodic() && c.dem.active()) check_dem_periodic(r, root, c);
   if (c.any_symmetry() && c.dem.active())
     r.fail(root["domain"]["symmetry"], "domain.symmetry", "symmetry faces do not yet carry DEM spheres (SPH only)");
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())

@@ -55,16 +55,26 @@ SURGE_HD inline std::uint32_t find_pair(const PairListView& l, const H* old_hist
   return no_pair;
 }
 
+// The points around which the grid is searched for the item at x (list_partners'
+// `queries(x, query)` calls query(q) for each): x itself, by default; x and its periodic
+// images for the DEM on periodic axes.
+struct OneQuery {
+  template <class Query>
+  SURGE_HD void operator()(const Vec3& x, Query&& query) const {
+    query(x);
+  }
+};
+
 // Rebuild pass 1: each item's partners, the items j the grid finds within `search` of
-// pos[i] for which listed(i, j, r2, old) holds (old: the pair's history in the last
-// list, or null), in the grid's order (cells, then sorted index: the same on any thread
-// count). Both items of a pair read the same old pair to decide, so they list each other
+// pos[i] (or of the queries' points) for which listed(i, j, r2, old) holds (old: the pair's history in the last
+// list, or null), in the grid's order (queries, cells, then sorted index: the same on any
+// thread count). Both items of a pair read the same old pair to decide, so they list each other
 // or neither. entry[k] holds the old pair of an A-side entry (no_pair for a new pair);
 // a_count[i] counts the A-side entries. Returns the most partners any item wanted (more
 // than Max: some were left out).
-template <int Max, class H, class Listed>
+template <int Max, class H, class Listed, class Queries = OneQuery>
 int list_partners(const PairListView& l, const std::uint32_t* id, const Vec3* pos, int n, const GridView& g,
-                  const H* old_hist, Real search, std::uint32_t* a_count, Listed listed) {
+                  const H* old_hist, Real search, std::uint32_t* a_count, Listed listed, Queries queries = {}) {
   return par::parallel_reduce(
       n, 0,
       SURGE_LAMBDA(int i) {
@@ -73,7 +83,7 @@ int list_partners(const PairListView& l, const std::uint32_t* id, const Vec3* po
         const std::uint32_t idi = id[i];
         int cnt = 0, wanted = 0;
         std::uint32_t as_a = 0;
-        for_each_neighbour(g, pos[i], search * search, [&](int j, const Vec3&, Real r2) {
+        const auto found = [&](int j, const Vec3&, Real r2) {
           if (j == i) return;
           const std::uint32_t idj = id[j];
           const bool i_is_a = idi < idj;
@@ -84,7 +94,8 @@ int list_partners(const PairListView& l, const std::uint32_t* id, const Vec3* po
           entry[cnt] = i_is_a ? old : no_pair;
           as_a += i_is_a ? 1U : 0U;
           ++cnt;
-        });
+        };
+        queries(pos[i], [&](const Vec3& q) { for_each_neighbour(g, q, search * search, found); });
         l.nnbr[i] = static_cast<std::uint32_t>(cnt);
         a_count[i] = as_a;
         return wanted;

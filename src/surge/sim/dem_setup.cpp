@@ -23,6 +23,7 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   if (list.empty()) return list;
   const Vec3 hi(c.domain.max - c.domain.min);
   dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
+  solver.set_periodic(domain::periodic_axes(c));
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(Real(0.7));
   std::vector<dem::Sphere> spheres;
@@ -239,9 +240,14 @@ std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {
   const Vec3 hi(c.domain.max - c.domain.min);
   dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
+  solver.set_periodic(domain::periodic_axes(c));
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
-  solver.set_spheres(s.spheres);
+  try {
+    solver.set_spheres(s.spheres);
+  } catch (const std::invalid_argument& e) { // a period too short for the spheres
+    throw InputError(c.source, 0, "domain.periodic", e.what());
+  }
   return solver;
 }
 
@@ -249,7 +255,9 @@ io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
   io::SphereFrame f;
   const auto sp = solver.spheres();
   for (const auto& s : sp) {
-    f.pos.push_back(s.pos);
+    Vec3 x = s.pos;
+    solver.periodic().wrap(x); // shown where it is, not up to half a period beyond a face
+    f.pos.push_back(x);
     f.vel.push_back(s.vel);
     f.omega.push_back(s.omega);
     f.radius.push_back(s.radius);
