@@ -182,6 +182,30 @@ with open(mirror_case, "w") as f:
 mir = runs_on([1, 3], "dambreak_mirror", mirror_case, ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
 same_files(mir[1], mir[3], "dam break with a symmetry plane across the slabs, 1 and 3 processes")
 
+# A sphere sinking on the face of a box periodic along x and y (slabs along z): spheres
+# and their body particles across a periodic face, 1 and 3 processes.
+sphere_csv = os.path.join(WORK, "sphere_on_face.csv")
+with open(sphere_csv, "w") as f:
+    f.write("0, 0.06, 0.1, 0.015\n")
+sink_case = os.path.join(WORK, "periodic_sinking.yaml")
+with open(sink_case, "w") as f:
+    f.write(f"""name: periodic_sinking
+dp: 0.005
+time: {{end: 0.02, output_every: 0.01, gauge_every: 0.002}}
+gravity: [0, 0, -9.81]
+domain: {{min: [0, 0, 0], max: [0.12, 0.12, 0.2], periodic: [xmin, xmax, ymin, ymax]}}
+fluid: [{{box: {{min: [0, 0, 0], max: [0.12, 0.12, 0.15]}}}}]
+walls: [{{name: tank, box: {{min: [0, 0, 0], max: [0.12, 0.12, 0.2]}}, open: [zmax, xmin, xmax, ymin, ymax]}}]
+dem:
+  materials: [{{name: sphere, density: 2500, E: 1.0e7, nu: 0.2, phi: 30, restitution: 0.5}}]
+  packs: [{{csv: {sphere_csv}, material: sphere}}]
+gauges:
+  - {{name: vz, type: sphere, sphere: 0, component: vz}}
+  - {{name: fx, type: sphere, sphere: 0, component: fx}}
+""")
+sink = runs_on([1, 3], "periodic_sinking", sink_case, [])
+same_files(sink[1], sink[3], "a sphere sinking on a periodic face, 1 and 3 processes")
+
 # --- bad input: every process stops, one message, exit 2, nothing written
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])
 check(r.returncode == 2, f"bad input on 2 processes exits 2 (got {r.returncode})")
