@@ -304,14 +304,14 @@ TEST(CaseReader, DemWithPeriodicFaces) {
                           "material: rock}]\n";
   const std::string periodic = slab(", periodic: [ymin, ymax]", "[zmax, ymin, ymax]", dem, "0.1");
   EXPECT_NO_THROW((void)io::read_case_text(periodic, "t.yaml"));
-  EXPECT_NO_THROW((void)io::read_case_text(periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: rock}]\n", "t.yaml"));
-  expect_error(periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 1, 1]}, material: rock}]\n", 0, "dem.walls.0.normal",
-               "periodic axis y");
+  EXPECT_NO_THROW((void)io::read_case_text(
+      periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: rock}]\n", "t.yaml"));
+  expect_error(periodic + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 1, 1]}, material: rock}]\n", 0,
+               "dem.walls.0.normal", "periodic axis y");
   const std::string mesh = cases_dir() + "/slide_slope.stl";
   expect_error(periodic + "  walls: [{mesh: " + mesh + ", material: rock}]\n", 0, "dem.walls.0",
                "not yet allowed with periodic");
-  expect_error(slab(", symmetry: [ymax]", "[zmax, ymax]", dem, "0.1"), 4, "domain.symmetry",
-               "do not yet carry DEM");
+  expect_error(slab(", symmetry: [ymax]", "[zmax, ymax]", dem, "0.1"), 4, "domain.symmetry", "do not yet carry DEM");
 }
 
 TEST(CaseReader, DampingInputErrors) {

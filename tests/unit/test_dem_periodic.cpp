@@ -156,7 +156,8 @@ TEST(DemPeriodic, ContactsAndBondsSurviveTheMoveBackByAPeriod) {
   // 0.3 s: the cluster travels 0.15 m; its spheres are moved back one by one (half a
   // period beyond the face) while bonded to spheres not yet moved.
   const Compared c = compare(cluster(0.08f), 0.08f, 0.3f);
-  std::printf("deviation from the wide box: periodic %.3g, translated by one or two periods %.3g\n", c.periodic, c.translated);
+  std::printf("deviation from the wide box: periodic %.3g, translated by one or two periods %.3g\n", c.periodic,
+              c.translated);
   EXPECT_GT(c.mixed, 0);
   EXPECT_TRUE(c.same_bonds);
   EXPECT_TRUE(c.same_contacts);
@@ -171,7 +172,8 @@ TEST(DemPeriodic, SpheresBondAcrossAFaceAtTheStart) {
   for (auto& s : straddling)
     if (s.pos.x >= period) s.pos.x -= period;
   const Compared c = compare(straddling, 0.095f, 0.1f);
-  std::printf("deviation from the wide box: periodic %.3g, translated by one or two periods %.3g\n", c.periodic, c.translated);
+  std::printf("deviation from the wide box: periodic %.3g, translated by one or two periods %.3g\n", c.periodic,
+              c.translated);
   EXPECT_TRUE(c.same_bonds);
   EXPECT_TRUE(c.same_contacts);
   EXPECT_EQ(c.broken, 0);

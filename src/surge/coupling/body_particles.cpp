@@ -57,9 +57,9 @@ BodySetup add_body_particles(const Case& c, const std::vector<dem::Sphere>& sphe
     for (int sz = -per.on[2]; sz <= per.on[2]; ++sz)
       for (int sy = -per.on[1]; sy <= per.on[1]; ++sy)
         for (int sx = -per.on[0]; sx <= per.on[0]; ++sx)
-          in = in || inside_at(Vec3d(p) + Vec3d(sx * static_cast<double>(per.len.x),
-                                                sy * static_cast<double>(per.len.y),
-                                                sz * static_cast<double>(per.len.z)));
+          in =
+              in || inside_at(Vec3d(p) + Vec3d(sx * static_cast<double>(per.len.x), sy * static_cast<double>(per.len.y),
+                                               sz * static_cast<double>(per.len.z)));
     return in;
   };
   particles::HostParticles kept;

@@ -24,8 +24,7 @@ void collect_bodies(const particles::ParticleView& p, std::uint32_t first, Vec3*
 // (Periodic axes: a body particle lies in the domain, its sphere's centre up to half a
 // period beyond a face; the arm goes to the nearest image.)
 void sum_per_sphere(const Vec3* acc, const Vec3* pos, Real mass, const std::uint32_t* start,
-                    const dem::RigidState* state, int n_spheres, domain::PeriodicAxes per, Vec3* force,
-                    Vec3* moment) {
+                    const dem::RigidState* state, int n_spheres, domain::PeriodicAxes per, Vec3* force, Vec3* moment) {
   par::parallel_for(
       n_spheres, SURGE_LAMBDA(int k) {
         Vec3 f{}, m{};

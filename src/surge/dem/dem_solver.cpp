@@ -123,8 +123,8 @@ SURGE_HD inline WallPair<L> wall_pair_input(const DemView& v, const Material* ma
 // history of the pair and its stored law, the rest from the two spheres and materials.
 template <class L>
 SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint32_t p, Real dist, Real dt) {
-  const PairInput in = sphere_pair_input(v.rel(a, b), dist, v.radius[a], v.radius[b], v.vel[a], v.omega[a],
-                                         v.vel[b], v.omega[b], v.mixed[v.material[a] * v.n_materials + v.material[b]]);
+  const PairInput in = sphere_pair_input(v.rel(a, b), dist, v.radius[a], v.radius[b], v.vel[a], v.omega[a], v.vel[b],
+                                         v.omega[b], v.mixed[v.material[a] * v.n_materials + v.material[b]]);
   return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), springs_of(v.hist[p]), dt);
 }
 
@@ -178,8 +178,9 @@ int list_spheres(const DemView& v, const neighbour::GridView& g, const ContactSl
   };
   if (!v.period.any())
     return neighbour::list_partners<max_contacts>(v.list, v.id, v.pos, v.n, g, old_hist, search, a_count, listed);
-  const Vec3 ghi = g.spec.lo + Vec3(static_cast<Real>(g.spec.nx), static_cast<Real>(g.spec.ny),
-                                    static_cast<Real>(g.spec.nz)) * g.spec.cell;
+  const Vec3 ghi =
+      g.spec.lo +
+      Vec3(static_cast<Real>(g.spec.nx), static_cast<Real>(g.spec.ny), static_cast<Real>(g.spec.nz)) * g.spec.cell;
   return neighbour::list_partners<max_contacts>(v.list, v.id, v.pos, v.n, g, old_hist, search, a_count, listed,
                                                 PeriodicQueries{v.period, g.spec.lo, ghi, search});
 }

@@ -12,7 +12,7 @@
 namespace surge::domain {
 
 struct PeriodicAxes {
-  int on[3]{};    // 1: the two faces of this axis are one
+  int on[3]{};     // 1: the two faces of this axis are one
   Vec3 lo{}, hi{}; // the faces
   Vec3 len{};      // hi - lo on the periodic axes
   [[nodiscard]] SURGE_HD bool any() const { return on[0] || on[1] || on[2]; }
