@@ -310,8 +310,24 @@ TEST(CaseReader, DemWithPeriodicFaces) {
                "dem.walls.0.normal", "periodic axis y");
   const std::string mesh = cases_dir() + "/slide_slope.stl";
   expect_error(periodic + "  walls: [{mesh: " + mesh + ", material: rock}]\n", 0, "dem.walls.0",
-               "not yet allowed with periodic");
-  expect_error(slab(", symmetry: [ymax]", "[zmax, ymax]", dem, "0.1"), 4, "domain.symmetry", "do not yet carry DEM");
+               "not yet allowed with periodic or symmetry");
+}
+
+TEST(CaseReader, DemWithSymmetryFaces) {
+  const std::string dem = "dem:\n  materials: [{name: rock}]\n"
+                          "  packs: [{box: {min: [0.1, 0, 0.12], max: [0.2, 0.06, 0.16]}, radius: 0.01, "
+                          "material: rock}]\n";
+  const std::string half = slab(", symmetry: [ymax]", "[zmax, ymax]", dem, "0.1");
+  EXPECT_NO_THROW((void)io::read_case_text(half, "t.yaml"));
+  EXPECT_NO_THROW((void)io::read_case_text(
+      half + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 0, 1]}, material: rock}]\n", "t.yaml"));
+  expect_error(half + "  walls: [{plane: {point: [0, 0, 0], normal: [0, 1, 1]}, material: rock}]\n", 0,
+               "dem.walls.0.normal", "symmetry axis y");
+  const std::string mesh = cases_dir() + "/slide_slope.stl";
+  expect_error(half + "  walls: [{mesh: " + mesh + ", material: rock}]\n", 0, "dem.walls.0",
+               "not yet allowed with periodic or symmetry");
+  expect_error(slab(", periodic: [xmin, xmax], symmetry: [ymax]", "[zmax, xmin, xmax, ymax]", dem, "0.1"), 4,
+               "domain.symmetry", "both periodic and symmetry");
 }
 
 TEST(CaseReader, DampingInputErrors) {

@@ -279,10 +279,122 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
   if (w.touches) w.touches[i] = touches;
 }
 
-// Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
-// B-side ones negated, read at the A side's slot), then its wall contacts.
+// Symmetry faces: the sphere i, when within the list's reach of one (the frame's band),
+// meets the mirror images of the spheres near its own mirror point, itself included.
+// The images are not copied: f(j, image, x, u, w) is called for each sphere j the grid
+// finds within `search` of that point, with the image's position, velocity and spin (a
+// pseudovector: det(R) R w), in the grid's order (the same on any thread count).
+struct MirrorSearch {
+  neighbour::GridView grid;
+  Real search;
+  const Material* mats;
+};
+SURGE_HD inline bool near_mirror(const DemView& v, const Vec3& x, domain::AxisShifts* shifts) {
+  bool near = false;
+  for (int k = 0; k < 3; ++k) {
+    shifts[k] = domain::axis_shifts(v.mirror, k, x[k]);
+    near = near || shifts[k].count > 1;
+  }
+  return near;
+}
+template <class F>
+SURGE_HD inline void for_each_mirror_partner(const DemView& v, const MirrorSearch& m, int i,
+                                             const domain::AxisShifts* sh, F&& f) {
+  const Vec3 xi = v.pos[i];
+  for (int sz = sh[2].first; sz < sh[2].first + sh[2].count; ++sz)
+    for (int sy = sh[1].first; sy < sh[1].first + sh[1].count; ++sy)
+      for (int sx = sh[0].first; sx < sh[0].first + sh[0].count; ++sx) {
+        if (sx == 0 && sy == 0 && sz == 0) continue;
+        const int s[3] = {sx, sy, sz};
+        const int image = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
+        Vec3 q = xi;
+        for (int k = 0; k < 3; ++k) q[k] = domain::shifted(v.mirror, k, xi[k], s[k]);
+        neighbour::for_each_neighbour(m.grid, q, m.search * m.search, [&](int j, const Vec3&, Real) {
+          Vec3 x = v.pos[j], u = v.vel[j], w = v.omega[j];
+          Real det = 1;
+          for (int k = 0; k < 3; ++k)
+            if (s[k] != 0) {
+              x[k] = domain::shifted(v.mirror, k, x[k], s[k]);
+              u[k] = -u[k];
+              w[k] = -w[k];
+              det = -det;
+            }
+          f(j, image, x, u, w * det);
+        });
+      }
+}
+
+// The contacts and bonds of sphere i with mirror images, added to its force f, torque t,
+// contact count and broken bonds; their histories by key in its own mirror slots (the
+// image's sphere keeps its own, mirrored: each sphere writes only itself). A broken bond
+// with an image counts 2, as a bond between two spheres counts once on each.
 template <class L>
-void sphere_pass(const DemView& v, const WallsView& walls, Real dt) {
+SURGE_HD inline void mirror_terms(const DemView& v, const MirrorSearch& m, Real dt, int i, Vec3& f, Vec3& t, int& used,
+                                  std::uint32_t& broken) {
+  ContactSlot* row = v.mirror_hist + static_cast<std::size_t>(v.id[i]) * max_mirror_slots;
+  domain::AxisShifts sh[3];
+  if (!near_mirror(v, v.pos[i], sh)) {
+    if (row[0].partner != no_partner) // (slots are held from the first on)
+      for (int k = 0; k < max_mirror_slots; ++k) row[k] = ContactSlot{};
+    return;
+  }
+  ContactSlot old[max_mirror_slots];
+  for (int k = 0; k < max_mirror_slots; ++k) old[k] = row[k];
+  const Vec3 xi = v.pos[i];
+  const Real ri = v.radius[i];
+  const int ma = v.material[i];
+  int kept = 0;
+  for_each_mirror_partner(v, m, i, sh, [&](int j, int image, const Vec3& x, const Vec3& u, const Vec3& w) {
+    const std::uint32_t key = mirror_key(image, v.id[j]);
+    ContactSlot h{};
+    for (int k = 0; k < max_mirror_slots; ++k)
+      if (old[k].partner == key) h = old[k];
+    const Vec3 d = xi - x;
+    const Real dist = norm(d), rj = v.radius[j];
+    if (!in_contact(dist, ri + rj, h.bonded != 0)) return;
+    const int mb = v.material[j];
+    const PairInput in =
+        sphere_pair_input(d, dist, ri, rj, v.vel[i], v.omega[i], u, w, v.mixed[ma * v.n_materials + mb]);
+    const Real mstar = v.mass[i] * v.mass[j] / (v.mass[i] + v.mass[j]);
+    const PairResult r = pair_terms<L>(in, L::pair(m.mats[ma], m.mats[mb], ri, rj, mstar), springs_of(h), dt);
+    f += r.force_a;
+    t += r.torque_a;
+    ++used;
+    broken += r.broke ? 2U : 0U;
+    if (kept < max_mirror_slots) row[kept++] = slot_of(r.springs, key);
+  });
+  for (int k = kept; k < max_mirror_slots; ++k) row[k] = ContactSlot{};
+}
+
+// Bonds each sphere of a bonded material near a symmetry face to the mirror images of
+// bonded spheres closer than `gap`, in its mirror slots (bond's rule); count[i]: the
+// bonds sphere i wanted (more than max_mirror_slots: some were left out).
+void bond_mirrors(const DemView& v, const MirrorSearch& m, Real gap, std::uint32_t* count) {
+  par::parallel_for(
+      v.n, SURGE_LAMBDA(int i) {
+        domain::AxisShifts sh[3];
+        count[i] = 0;
+        if (!m.mats[v.material[i]].bonded || !near_mirror(v, v.pos[i], sh)) return;
+        ContactSlot* row = v.mirror_hist + static_cast<std::size_t>(v.id[i]) * max_mirror_slots;
+        std::uint32_t bonds = 0;
+        for_each_mirror_partner(v, m, i, sh, [&](int j, int image, const Vec3& x, const Vec3&, const Vec3&) {
+          if (!m.mats[v.material[j]].bonded || norm(v.pos[i] - x) >= v.radius[i] + v.radius[j] + gap) return;
+          if (bonds < max_mirror_slots) {
+            row[bonds] = ContactSlot{};
+            row[bonds].partner = mirror_key(image, v.id[j]);
+            row[bonds].bonded = 1;
+          }
+          ++bonds;
+        });
+        count[i] = bonds;
+      });
+}
+
+// Pass 2: each sphere sums its listed pairs in list order (A-side ones as evaluated,
+// B-side ones negated, read at the A side's slot), then its wall contacts, then its
+// contacts with mirror images.
+template <class L>
+void sphere_pass(const DemView& v, const WallsView& walls, const MirrorSearch& mirror, Real dt) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int i) {
         std::uint32_t flags = 0, broken = 0;
@@ -309,6 +421,7 @@ void sphere_pass(const DemView& v, const WallsView& walls, Real dt) {
         Vec3 f{fx, fy, fz}, t{tx, ty, tz};
         int used = static_cast<int>(flags);
         wall_terms<L>(v, walls, dt, i, f, t, used);
+        if (v.mirror_hist) mirror_terms<L>(v, mirror, dt, i, f, t, used, broken);
         v.force[i] = f;
         v.torque[i] = t;
         v.broken[i] += broken;
@@ -727,18 +840,57 @@ void DemSolver::set_spheres(const std::vector<Sphere>& s) {
   n_pairs_ = 0;
   list_valid_ = false;
   skin_ = Real(0.1) * max_radius_;
+  for (int k = 0; k < 3; ++k)
+    if (period_.on[k] && !(period_.len[k] > 2 * list_reach() + 2 * max_radius_))
+      throw std::invalid_argument(std::string("a periodic length along ") + "xyz"[k] +
+                                  " shorter than twice the DEM's search reach plus a sphere diameter (" +
+                                  std::to_string(2 * list_reach() + 2 * max_radius_) + " m)");
+  check_mirrored(s);
+  mirror_hist_.resize(mirrored() ? s.size() * max_mirror_slots : 0);
+  par::fill(mirror_hist_, ContactSlot{});
+  set_grid();
+}
+
+void DemSolver::set_grid() {
   // On periodic axes the spheres lie up to half a period beyond the faces (set_periodic).
   Vec3 glo = lo_, ghi = hi_;
   for (int k = 0; k < 3; ++k)
     if (period_.on[k]) {
-      if (!(period_.len[k] > 2 * list_reach() + 2 * max_radius_))
-        throw std::invalid_argument(std::string("a periodic length along ") + "xyz"[k] +
-                                    " shorter than twice the DEM's search reach plus a sphere diameter (" +
-                                    std::to_string(2 * list_reach() + 2 * max_radius_) + " m)");
       glo[k] -= period_.len[k] / 2;
       ghi[k] += period_.len[k] / 2;
     }
   grid_.set_spec(neighbour::make_grid(glo, ghi, std::max(list_reach(), Real(1e-6))));
+}
+
+void DemSolver::set_symmetry(const std::array<bool, 6>& faces) {
+  mirror_ = domain::ImageFrame{};
+  for (int k = 0; k < 3; ++k) {
+    mirror_.mirror_lo[k] = faces[static_cast<std::size_t>(2 * k)] ? 1 : 0;
+    mirror_.mirror_hi[k] = faces[static_cast<std::size_t>(2 * k + 1)] ? 1 : 0;
+  }
+  mirror_.lo = lo_;
+  mirror_.hi = hi_;
+  mirror_.len = hi_ - lo_;
+}
+
+void DemSolver::check_mirrored(const std::vector<Sphere>& s) const {
+  if (!mirrored()) return;
+  if (period_.any())
+    throw std::invalid_argument("DEM spheres with both symmetry and periodic faces are not yet possible");
+  if (s.size() >= max_mirrored_spheres) throw std::invalid_argument("too many spheres for symmetry faces");
+  static const char* const face[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  for (std::size_t n = 0; n < s.size(); ++n)
+    for (int k = 0; k < 3; ++k) {
+      // A sphere may touch its image (0.1 % of its radius of overlap is allowed for
+      // rounding), not cross it: the whole would hold two spheres in one place.
+      const Real r = s[n].radius * Real(0.999);
+      const bool lo = mirror_.mirror_lo[k] && s[n].pos[k] - lo_[k] < r;
+      const bool hi = mirror_.mirror_hi[k] && hi_[k] - s[n].pos[k] < r;
+      if (lo || hi)
+        throw std::invalid_argument(
+            "sphere " + std::to_string(n) + " crosses the symmetry face " + face[2 * k + (hi ? 1 : 0)] +
+            " (its centre closer to it than its radius): it would overlap its own mirror image");
+    }
 }
 
 DemView DemSolver::view() {
@@ -753,6 +905,9 @@ DemView DemSolver::view() {
   v.law = law_.data();
   v.list.pair_b = pair_b_.data();
   v.period = period_;
+  v.mirror = mirror_;
+  v.mirror.band = Vec3(list_reach(), list_reach(), list_reach());
+  v.mirror_hist = mirrored() ? mirror_hist_.data() : nullptr;
   return v;
 }
 
@@ -857,7 +1012,7 @@ void DemSolver::step(Real dt) {
                                                tri_grid_, bodies_view(),
                                                has_wall_bodies() ? wall_react_.data() : nullptr,
                                                has_wall_bodies() ? body_flag_.data() : nullptr},
-                             dt);
+                             detail::MirrorSearch{grid_.view(v.pos), list_reach(), materials_.data()}, dt);
     });
     if (has_wall_bodies()) sum_body_loads();
   }
@@ -957,7 +1112,8 @@ std::string DemSolver::save() const {
     }
     save_vector(out, par::download(b));
   });
-  save_vector(out, par::download(hist_)); // the pairs' histories
+  save_vector(out, par::download(hist_));                        // the pairs' histories
+  if (mirrored()) save_vector(out, par::download(mirror_hist_)); // by id
   return out;
 }
 
@@ -981,6 +1137,7 @@ void DemSolver::restore(const std::string& bytes) {
   std::size_t pairs = 0;
   for (auto c : counts) pairs += c;
   load_buffer(bytes, pos, hist_, pairs);
+  if (mirrored()) load_buffer(bytes, pos, mirror_hist_, N * max_mirror_slots);
   n_pairs_ = static_cast<std::uint32_t>(pairs);
   pair_.resize(pairs);
   law_.resize(pairs);
@@ -990,6 +1147,10 @@ void DemSolver::restore(const std::string& bytes) {
   neighbour::pair_partners<max_contacts>(v.list, v.id, n_);
   with_contact_law(law_index_, [&](auto law) { detail::pair_laws<decltype(law)>(v, materials_.data()); });
   list_valid_ = valid == 1;
+  if (mirrored() && list_valid_) { // the mirror search's grid: the cells of the last sort, from its positions
+    grid_.sort(pos_built_.data(), nullptr, n_); // (sorted already: the permutation is the identity)
+    grid_.build_cell_start(n_);
+  }
   // The wall histories, saved in sorted order, back to rows by id.
   par::upload(wall_hist_, reorder_wall_rows(par::download(wall_hist_), par::download(id_), false));
 }
@@ -1012,7 +1173,7 @@ void DemSolver::rigid_states(par::Buffer<RigidState>& out) {
 long DemSolver::bond_touching(Real gap) {
   if (!(gap < skin_)) { // the list must hold every pair within the gap
     skin_ = 2 * gap;
-    grid_.set_spec(neighbour::make_grid(lo_, hi_, std::max(list_reach(), Real(1e-6))));
+    set_grid();
   }
   rebuild_list();
   const DemView v = view();
@@ -1020,6 +1181,17 @@ long DemSolver::bond_touching(Real gap) {
   const auto h = par::download(hist_);
   long bonds = 0; // marked on the A side only
   for (const auto& s : h) bonds += s.bonded ? 1 : 0;
+  if (mirrored()) { // each sphere's bonds to images, one per slot
+    tmpu_.resize(static_cast<std::size_t>(n_));
+    detail::bond_mirrors(v, detail::MirrorSearch{grid_.view(v.pos), list_reach(), materials_.data()}, gap,
+                         tmpu_.data());
+    for (const std::uint32_t b : par::download(tmpu_)) {
+      if (b > static_cast<std::uint32_t>(max_mirror_slots))
+        throw std::runtime_error("DEM: a sphere would bond to " + std::to_string(b) + " mirror images, more than the " +
+                                 std::to_string(max_mirror_slots) + " it can hold");
+      bonds += b;
+    }
+  }
   return bonds;
 }
 

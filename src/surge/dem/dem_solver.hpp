@@ -20,6 +20,7 @@
 #pragma once
 #include "surge/dem/contact_law.hpp"
 #include "surge/dem/rigid_state.hpp"
+#include "surge/domain/image_frame.hpp"
 #include "surge/domain/periodic.hpp"
 #include "surge/neighbour/pair_list.hpp"
 #include "surge/neighbour/uniform_grid.hpp"
@@ -119,6 +120,14 @@ inline constexpr std::uint32_t no_partner = 0xFFFFFFFFU;
 inline constexpr std::uint32_t plane_partner = 0x80000000U;    // partner id of plane k: plane_partner | k
 inline constexpr std::uint32_t triangle_partner = 0x40000000U; // partner id of wall triangle t
 inline constexpr int max_wall_candidates = 8;                  // wall triangles touching one sphere
+// Contacts with mirror images across symmetry faces, with history, per sphere (more are
+// evaluated, without history); each slot's partner is mirror_key(image, id).
+inline constexpr int max_mirror_slots = 8;
+inline constexpr std::uint32_t max_mirrored_spheres = 1U << 27;
+// image: (sx + 1) + 3 (sy + 1) + 9 (sz + 1) for the shifts sx, sy, sz (domain::shifted).
+[[nodiscard]] SURGE_HD constexpr std::uint32_t mirror_key(int image, std::uint32_t id) {
+  return (static_cast<std::uint32_t>(image) << 27) | id;
+}
 
 // One history slot: the partner and the A-side (lower id) springs of that contact.
 struct ContactSlot {
@@ -180,6 +189,8 @@ struct DemView {
   const Vec3 *ext_force, *ext_torque; // by sphere id
   Vec3* pos_built;                    // positions when the list was built
   domain::PeriodicAxes period;        // pairs meet through the nearest image (rel)
+  domain::ImageFrame mirror;          // symmetry faces (mirror_lo / hi), band: the list's reach
+  ContactSlot* mirror_hist;           // max_mirror_slots per sphere, by id (null without symmetry faces)
   // Position of a less that of b, through b's nearest periodic image.
   [[nodiscard]] SURGE_HD Vec3 rel(int a, int b) const { return period.rel(pos[a], pos[b]); }
 };
@@ -205,6 +216,13 @@ public:
   // std::invalid_argument for a period under twice the list's reach plus a sphere.
   void set_periodic(const domain::PeriodicAxes& p) { period_ = p; }
   [[nodiscard]] const domain::PeriodicAxes& periodic() const { return period_; }
+  // Symmetry faces (before set_spheres; indexed as Face: xmin, xmax, ymin, ...): a sphere
+  // near one meets the mirror images of its neighbours and of itself (positions reflected,
+  // velocities' normal components and spins mirrored), each contact kept with its history
+  // and bond by the sphere itself, so half a symmetric pack behaves as the whole.
+  // set_spheres throws std::invalid_argument for a sphere that crosses such a face (it
+  // would overlap its own image) and for symmetry faces with periodic ones.
+  void set_symmetry(const std::array<bool, 6>& faces);
   // Triangle-mesh walls (all meshes together; WallTriangle::mesh tells them apart).
   void set_wall_triangles(const std::vector<WallTriangle>& t);
   // Bonds every pair of spheres of bonded materials whose gap is below `gap` (SPEC §3,
@@ -285,6 +303,8 @@ private:
       return hist_old_; // (no ContactSlot field is sorted: the wall histories are by id)
   }
   void sort_spheres();
+  void set_grid(); // the spheres' grid over the domain (and half a period beyond periodic faces)
+  void check_mirrored(const std::vector<Sphere>& s) const;
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
   void rebuild_list();
   // Whether some sphere has moved more than half the skin since the list was built.
@@ -335,6 +355,9 @@ private:
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   domain::PeriodicAxes period_{};
+  domain::ImageFrame mirror_{};          // symmetry faces (no periodic axes: those are period_)
+  par::Buffer<ContactSlot> mirror_hist_; // max_mirror_slots per sphere, by id; with symmetry faces only
+  [[nodiscard]] bool mirrored() const { return mirror_.any(); }
   int n_ = 0;
   Real max_radius_ = 0;
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;

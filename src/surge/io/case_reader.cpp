@@ -673,22 +673,30 @@ void check_within_image_faces(const Reader& r, const YAML::Node& root, const Cas
   }
 }
 
-// DEM walls with periodic faces: planes along the periodic axes (a plane across one would
-// cut the period), no meshes yet (their triangles would need images).
-void check_dem_periodic(const Reader& r, const YAML::Node& root, const Case& c) {
+// DEM walls with periodic or symmetry faces: planes along those axes (a plane across a
+// periodic axis would cut the period; one slanted across a symmetry face would meet its
+// own image, which the spheres do not see), no meshes yet (their triangles would need
+// images); not both kinds of face at once.
+void check_dem_image_faces(const Reader& r, const YAML::Node& root, const Case& c) {
+  if (c.any_periodic() && c.any_symmetry())
+    r.fail(root["domain"]["symmetry"], "domain.symmetry",
+           "DEM spheres with both periodic and symmetry faces are not yet possible");
   for (std::size_t i = 0; i < c.dem.walls.size(); ++i) {
     const DemWallSpec& w = c.dem.walls[i];
     const std::string key = "dem.walls." + std::to_string(i);
     if (w.is_mesh)
       r.fail(root["dem"]["walls"][i], key,
-             "DEM meshes and terrains are not yet allowed with periodic faces (their triangles would need images); "
-             "use planes");
+             "DEM meshes and terrains are not yet allowed with periodic or symmetry faces (their triangles would "
+             "need images); use planes");
     const Vec3d n = w.normal * (1.0 / norm(w.normal));
-    for (std::size_t a = 0; a < 3; ++a)
-      if (c.periodic[a] && std::fabs(n[static_cast<int>(a)]) > 1e-9)
+    for (std::size_t a = 0; a < 3; ++a) {
+      const bool mirror = c.symmetry[2 * a] || c.symmetry[2 * a + 1];
+      if ((c.periodic[a] || mirror) && std::fabs(n[static_cast<int>(a)]) > 1e-9)
         r.fail(root["dem"]["walls"][i]["normal"], key + ".normal",
-               std::string("a DEM plane facing along the periodic axis ") + "xyz"[a] +
-                   " would cut the period: planes with periodic faces lie along those axes");
+               std::string("a DEM plane facing along the ") + (mirror ? "symmetry" : "periodic") + " axis " + "xyz"[a] +
+                   (mirror ? " would meet its own mirror image" : " would cut the period") +
+                   ": planes lie along the axes of periodic and symmetry faces");
+    }
   }
 }
 
@@ -846,9 +854,7 @@ void check_whole(const Reader& r, const YAML::Node& root, const Case& c) {
       if (gauge_type(c.gauges[i].type).water)
         r.fail(root["gauges"][i], "gauges." + std::to_string(i),
                "this gauge measures the water and a DEM-only case has none; use sphere, dem_wall or body gauges");
-  if (c.any_periodic() && c.dem.active()) check_dem_periodic(r, root, c);
-  if (c.any_symmetry() && c.dem.active())
-    r.fail(root["domain"]["symmetry"], "domain.symmetry", "symmetry faces do not yet carry DEM spheres (SPH only)");
+  if ((c.any_periodic() || c.any_symmetry()) && c.dem.active()) check_dem_image_faces(r, root, c);
   if (c.fluid.empty() && c.walls.empty() && !c.dem.active())
     r.fail(root, "fluid", "the case has neither fluid, walls nor DEM spheres: nothing to simulate");
   if (!c.fluid.empty() && !(c.water_depth() > 0))

@@ -24,13 +24,18 @@ std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, 
   const Vec3 hi(c.domain.max - c.domain.min);
   dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
   solver.set_periodic(domain::periodic_axes(c));
+  solver.set_symmetry(c.symmetry);
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(Real(0.7));
   std::vector<dem::Sphere> spheres;
   spheres.reserve(list.size());
   for (const auto& sp : list)
     spheres.push_back({Vec3(sp.centre - s.origin), Vec3{}, Vec3{}, static_cast<Real>(sp.radius), pk.material, false});
-  solver.set_spheres(spheres);
+  try {
+    solver.set_spheres(spheres);
+  } catch (const std::invalid_argument& e) { // a period too short, a sphere across a symmetry face
+    throw InputError(c.source, pk.line, "dem.packs", e.what());
+  }
   const Real dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
   const long steps = static_cast<long>(std::ceil(pk.settle / static_cast<double>(dt)));
   for (long k = 0; k < steps; ++k) solver.step(dt);
@@ -241,12 +246,13 @@ dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {
   const Vec3 hi(c.domain.max - c.domain.min);
   dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
   solver.set_periodic(domain::periodic_axes(c));
+  solver.set_symmetry(c.symmetry);
   solver.set_wall_triangles(s.triangles);
   solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
   try {
     solver.set_spheres(s.spheres);
-  } catch (const std::invalid_argument& e) { // a period too short for the spheres
-    throw InputError(c.source, 0, "domain.periodic", e.what());
+  } catch (const std::invalid_argument& e) { // a period too short for the spheres, a sphere across a symmetry face
+    throw InputError(c.source, 0, c.any_symmetry() ? "domain.symmetry" : "domain.periodic", e.what());
   }
   return solver;
 }
