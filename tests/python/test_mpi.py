@@ -3,7 +3,8 @@ bits -- gauges, every particle file, the checkpoint -- on a dam break, on the co
 slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
 on Archimedes with mDBC and the symplectic integrator, on
 the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move),
-on a periodic flume with a damping zone and on a dam break with a symmetry plane (images);
+on a periodic flume with a damping zone, on a dam break with a symmetry plane (images) and on
+spheres sinking on a periodic face and against their mirror image;
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -205,6 +206,21 @@ gauges:
 """)
 sink = runs_on([1, 3], "periodic_sinking", sink_case, [])
 same_files(sink[1], sink[3], "a sphere sinking on a periodic face, 1 and 3 processes")
+
+# Two spheres touching on a symmetry plane, as the half y < 0.06 m (slabs along z): the
+# sphere meets its own mirror image (DEM) in mirrored water, 1 and 3 processes.
+half_csv = os.path.join(WORK, "sphere_at_mirror.csv")
+with open(half_csv, "w") as f:
+    f.write("0.06, 0.045, 0.1, 0.015\n")
+mirror_case = os.path.join(WORK, "symmetric_sinking.yaml")
+with open(mirror_case, "w") as f:
+    f.write(open(sink_case).read().replace("periodic_sinking", "symmetric_sinking")
+            .replace("max: [0.12, 0.12, 0.2], periodic: [xmin, xmax, ymin, ymax]", "max: [0.12, 0.06, 0.2], symmetry: [ymax]")
+            .replace("max: [0.12, 0.12, 0.15]", "max: [0.12, 0.06, 0.15]")
+            .replace("max: [0.12, 0.12, 0.2]}, open: [zmax, xmin, xmax, ymin, ymax]", "max: [0.12, 0.06, 0.2]}, open: [zmax, ymax]")
+            .replace(sphere_csv, half_csv))
+mirror_sink = runs_on([1, 3], "symmetric_sinking", mirror_case, [])
+same_files(mirror_sink[1], mirror_sink[3], "a sphere touching its mirror image, sinking, 1 and 3 processes")
 
 # --- bad input: every process stops, one message, exit 2, nothing written
 r = mpi(2, ["run", os.path.join(CASES, "demo_dambreak.yaml"), "--out", os.path.join(WORK, "bad"), "--set", "dp=-1"])
