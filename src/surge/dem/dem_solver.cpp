@@ -864,9 +864,9 @@ void DemSolver::set_grid() {
 
 void DemSolver::set_symmetry(const std::array<bool, 6>& faces) {
   mirror_ = domain::ImageFrame{};
-  for (int k = 0; k < 3; ++k) {
-    mirror_.mirror_lo[k] = faces[static_cast<std::size_t>(2 * k)] ? 1 : 0;
-    mirror_.mirror_hi[k] = faces[static_cast<std::size_t>(2 * k + 1)] ? 1 : 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    mirror_.mirror_lo[k] = faces[2 * k] ? 1 : 0;
+    mirror_.mirror_hi[k] = faces[2 * k + 1] ? 1 : 0;
   }
   mirror_.lo = lo_;
   mirror_.hi = hi_;

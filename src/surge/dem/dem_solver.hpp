@@ -355,8 +355,6 @@ private:
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   domain::PeriodicAxes period_{};
-  domain::ImageFrame mirror_{};          // symmetry faces (no periodic axes: those are period_)
-  par::Buffer<ContactSlot> mirror_hist_; // max_mirror_slots per sphere, by id; with symmetry faces only
   [[nodiscard]] bool mirrored() const { return mirror_.any(); }
   int n_ = 0;
   Real max_radius_ = 0;
@@ -370,7 +368,9 @@ private:
   par::Buffer<PairForce> pair_;
   par::Buffer<PairLaw> law_;
   std::uint32_t n_pairs_ = 0;
-  par::Buffer<Vec3> pos_built_; // positions when the list was built
+  domain::ImageFrame mirror_{};          // symmetry faces (no periodic axes: those are period_); 84 B beside n_pairs_
+  par::Buffer<Vec3> pos_built_;          // positions when the list was built
+  par::Buffer<ContactSlot> mirror_hist_; // max_mirror_slots per sphere, by id; with symmetry faces only
   bool list_valid_ = false;
   Real skin_ = 0;
 };

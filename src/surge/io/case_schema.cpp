@@ -448,11 +448,15 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"domain.min", vec, "required", "m", "", "lowest corner"});
   k.push_back({"domain.max", vec, "required", "m", "> min", "highest corner"});
   k.push_back({"domain.periodic", "list of faces", "[]", "", "in pairs: xmin xmax | ymin ymax | zmin zmax",
-               "faces that are one: water leaving through one enters at the other, and sees across it (SPH; each "
-               "period at least 4 h long; walls and water end at the faces, box tanks leave them open)"});
+               "faces that are one: water leaving through one enters at the other, and sees across it (SPH, DEM and "
+               "the coupling; each period at least 4 h long, and for spheres over twice the DEM's search reach plus "
+               "a diameter; walls and water end at the faces, box tanks leave them open; DEM planes lie along the "
+               "periodic axes)"});
   k.push_back({"domain.symmetry", "list of faces", "[]", "", "xmin xmax ymin ymax zmin zmax, none periodic",
                "mirror planes: the water near one sees its mirror image, so half a symmetric tank gives the whole "
-               "tank's answer (SPH; walls and water end at the faces, box tanks leave them open)"});
+               "tank's answer (SPH, DEM and the coupling: a sphere meets the mirror images of its neighbours and of "
+               "itself; walls and water end at the faces, box tanks leave them open; no sphere may cross a symmetry "
+               "face, DEM planes lie along its axis, DEM meshes and periodic faces not yet with spheres)"});
   k.push_back({"sph", "mapping", "", "", "", "the water's model"});
   add(k, "sph.", sph_fields());
   k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});
