@@ -1,5 +1,6 @@
 """What the end-to-end tests share: named checks that print ok / FAIL and are counted,
-and a case written into the work folder and run."""
+a case written into the work folder and run, and the sinking-sphere case of the image
+tests."""
 import os
 import subprocess
 import sys
@@ -31,3 +32,29 @@ class Checks:
             print(f"{len(self.failures)} check(s) failed")
             sys.exit(1)
         print(f"all {what} checks passed")
+
+
+def sinking_case(name, lo, hi, faces, open_faces, csv, gauges, times=(0.1, 0.1, 0.005),
+                 sph="{boundary: mdbc, integrator: symplectic}"):
+    """Spheres (csv: x, y, z, r per line; density 2500) sinking in still water 0.15 m deep,
+    dp 5 mm, in the tank lo-hi (lists of three) open at `open_faces`; `faces`: the domain's
+    periodic or symmetry keys, like ", symmetry: [ymax]"; gauges: (name, sphere, component);
+    times: end, output and gauge intervals; sph: the sph mapping, or None for the defaults."""
+    box = f"{{min: {lo}, max: {hi}}}"
+    water = f"{{min: {lo}, max: {[hi[0], hi[1], 0.15]}}}"
+    text = f"""name: {name}
+dp: 0.005
+time: {{end: {times[0]}, output_every: {times[1]}, gauge_every: {times[2]}}}
+gravity: [0, 0, -9.81]
+domain: {{min: {lo}, max: {hi}{faces}}}
+"""
+    if sph:
+        text += f"sph: {sph}\n"
+    text += f"""fluid: [{{box: {water}}}]
+walls: [{{name: tank, box: {box}, open: [{", ".join(open_faces)}]}}]
+dem:
+  materials: [{{name: sphere, density: 2500, E: 1.0e7, nu: 0.2, phi: 30, restitution: 0.5}}]
+  packs: [{{csv: {csv}, material: sphere}}]
+gauges:
+"""
+    return text + "".join(f"  - {{name: {n}, type: sphere, sphere: {k}, component: {q}}}\n" for n, k, q in gauges)

@@ -19,6 +19,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import sinking_case  # noqa: E402
+
 SURGE, WORK, CASES = sys.argv[1], sys.argv[2], sys.argv[3]
 MPIRUN = shutil.which("mpirun")
 failures = []
@@ -189,21 +192,10 @@ sphere_csv = os.path.join(WORK, "sphere_on_face.csv")
 with open(sphere_csv, "w") as f:
     f.write("0, 0.06, 0.1, 0.015\n")
 sink_case = os.path.join(WORK, "periodic_sinking.yaml")
+sink_gauges = [("vz", 0, "vz"), ("fx", 0, "fx")]
 with open(sink_case, "w") as f:
-    f.write(f"""name: periodic_sinking
-dp: 0.005
-time: {{end: 0.02, output_every: 0.01, gauge_every: 0.002}}
-gravity: [0, 0, -9.81]
-domain: {{min: [0, 0, 0], max: [0.12, 0.12, 0.2], periodic: [xmin, xmax, ymin, ymax]}}
-fluid: [{{box: {{min: [0, 0, 0], max: [0.12, 0.12, 0.15]}}}}]
-walls: [{{name: tank, box: {{min: [0, 0, 0], max: [0.12, 0.12, 0.2]}}, open: [zmax, xmin, xmax, ymin, ymax]}}]
-dem:
-  materials: [{{name: sphere, density: 2500, E: 1.0e7, nu: 0.2, phi: 30, restitution: 0.5}}]
-  packs: [{{csv: {sphere_csv}, material: sphere}}]
-gauges:
-  - {{name: vz, type: sphere, sphere: 0, component: vz}}
-  - {{name: fx, type: sphere, sphere: 0, component: fx}}
-""")
+    f.write(sinking_case("periodic_sinking", [0, 0, 0], [0.12, 0.12, 0.2], ", periodic: [xmin, xmax, ymin, ymax]",
+                         ["zmax", "xmin", "xmax", "ymin", "ymax"], sphere_csv, sink_gauges, (0.02, 0.01, 0.002), None))
 sink = runs_on([1, 3], "periodic_sinking", sink_case, [])
 same_files(sink[1], sink[3], "a sphere sinking on a periodic face, 1 and 3 processes")
 
@@ -214,11 +206,8 @@ with open(half_csv, "w") as f:
     f.write("0.06, 0.045, 0.1, 0.015\n")
 mirror_case = os.path.join(WORK, "symmetric_sinking.yaml")
 with open(mirror_case, "w") as f:
-    f.write(open(sink_case).read().replace("periodic_sinking", "symmetric_sinking")
-            .replace("max: [0.12, 0.12, 0.2], periodic: [xmin, xmax, ymin, ymax]", "max: [0.12, 0.06, 0.2], symmetry: [ymax]")
-            .replace("max: [0.12, 0.12, 0.15]", "max: [0.12, 0.06, 0.15]")
-            .replace("max: [0.12, 0.12, 0.2]}, open: [zmax, xmin, xmax, ymin, ymax]", "max: [0.12, 0.06, 0.2]}, open: [zmax, ymax]")
-            .replace(sphere_csv, half_csv))
+    f.write(sinking_case("symmetric_sinking", [0, 0, 0], [0.12, 0.06, 0.2], ", symmetry: [ymax]", ["zmax", "ymax"],
+                         half_csv, sink_gauges, (0.02, 0.01, 0.002), None))
 mirror_sink = runs_on([1, 3], "symmetric_sinking", mirror_case, [])
 same_files(mirror_sink[1], mirror_sink[3], "a sphere touching its mirror image, sinking, 1 and 3 processes")
 

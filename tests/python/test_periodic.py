@@ -24,7 +24,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import Checks  # noqa: E402
+from checks import Checks, sinking_case  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 import surge_post  # noqa: E402
@@ -105,36 +105,16 @@ if not QUICK:
 # face x = 0 (its body particles and the water it displaces on both sides): the two are
 # translations of each other by 6 dp, so the fluid lattice meets the sphere alike and only
 # round-off may tell them apart.
-SINK = """name: periodic_sinking
-dp: 0.005
-time: {end: 0.1, output_every: 0.1, gauge_every: 0.005}
-gravity: [0, 0, -9.81]
-domain: {min: [0, 0, 0], max: [0.12, 0.12, 0.2], periodic: [xmin, xmax, ymin, ymax]}
-sph: {boundary: mdbc, integrator: symplectic}
-fluid:
-  - box: {min: [0, 0, 0], max: [0.12, 0.12, 0.15]}
-walls:
-  - name: tank
-    box: {min: [0, 0, 0], max: [0.12, 0.12, 0.2]}
-    open: [zmax, xmin, xmax, ymin, ymax]
-dem:
-  materials:
-    - {name: sphere, density: 2500, E: 1.0e7, nu: 0.2, phi: 30, restitution: 0.5}
-  packs:
-    - {csv: SPHERE_CSV, material: sphere}
-gauges:
-  - {name: z, type: sphere, sphere: 0, component: z}
-  - {name: vz, type: sphere, sphere: 0, component: vz}
-  - {name: fz, type: sphere, sphere: 0, component: fz}
-  - {name: vx, type: sphere, sphere: 0, component: vx}
-"""
 if not QUICK:
     sinks = {}
     for name, x in (("middle", 0.06), ("face", 0.0)):
         csv = os.path.join(WORK, f"sphere_{name}.csv")
         with open(csv, "w") as f:
             f.write(f"{x}, 0.06, 0.08, 0.015\n")
-        out = run(f"sink_{name}", SINK.replace("SPHERE_CSV", csv))
+        case = sinking_case("periodic_sinking", [0, 0, 0], [0.12, 0.12, 0.2], ", periodic: [xmin, xmax, ymin, ymax]",
+                            ["zmax", "xmin", "xmax", "ymin", "ymax"], csv,
+                            [(q, 0, q) for q in ("z", "vz", "fz", "vx")])
+        out = run(f"sink_{name}", case)
         sinks[name] = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
         s = surge_post.read_summary(os.path.join(out, "summary.json"))
         check(s["removed"]["total"] == 0, f"sphere at the {name}: no water removed ({s['removed']})")

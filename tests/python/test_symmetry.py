@@ -25,7 +25,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import Checks  # noqa: E402
+from checks import Checks, sinking_case  # noqa: E402
 
 SURGE, WORK, CASES = sys.argv[1:4]
 T = Checks(SURGE, WORK)
@@ -111,39 +111,17 @@ check(sh["removed"]["total"] == 0 and sw["removed"]["total"] == 0,
 # printed (the halves sink 1-2 % slower by then). No water may be removed. The DEM's
 # mirror contacts are checked exactly in test_dem_symmetry. The broken variant (no
 # symmetry face, the face left open) fails.
-SINK = """name: symmetric_sinking
-dp: 0.005
-time: {end: 0.1, output_every: 0.1, gauge_every: 0.005}
-gravity: [0, 0, -9.81]
-domain: {min: [0, Y0, 0], max: [0.12, Y1, 0.2]SYMMETRY}
-sph: {boundary: mdbc, integrator: symplectic}
-fluid:
-  - box: {min: [0, Y0, 0], max: [0.12, Y1, 0.15]}
-walls:
-  - name: tank
-    box: {min: [0, Y0, 0], max: [0.12, Y1, 0.2]}
-    open: OPEN
-dem:
-  materials:
-    - {name: sphere, density: 2500, E: 1.0e7, nu: 0.2, phi: 30, restitution: 0.5}
-  packs:
-    - {csv: SPHERE_CSV, material: sphere}
-gauges:
-"""
-SINK += "".join(f"  - {{name: {q}{k}, type: sphere, sphere: {k}, component: {q}}}\n"
-                for k in (0, 1) for q in ("z", "vz", "fz", "vy"))
-runs = {"whole": (0.0, 0.12, "", "[zmax]", [0.045, 0.075]),
-        "lower": (0.0, 0.06, ", symmetry: [ymax]", "[zmax, ymax]", [0.045]),
-        "upper": (0.06, 0.12, ", symmetry: [ymin]", "[zmax, ymin]", [0.075])}
+runs = {"whole": (0.0, 0.12, "", ["zmax"], [0.045, 0.075]),
+        "lower": (0.0, 0.06, ", symmetry: [ymax]", ["zmax", "ymax"], [0.045]),
+        "upper": (0.06, 0.12, ", symmetry: [ymin]", ["zmax", "ymin"], [0.075])}
 sinks = {}
 for name, (y0, y1, sym, open_faces, ys) in runs.items():
     csv = os.path.join(WORK, f"spheres_{name}.csv")
     with open(csv, "w") as f:
         f.writelines(f"0.06, {y}, 0.08, 0.015\n" for y in ys)
-    case = SINK.replace("Y0", str(y0)).replace("Y1", str(y1)).replace("SYMMETRY", "" if BROKEN else sym)
-    case = case.replace("OPEN", open_faces).replace("SPHERE_CSV", csv)
-    if len(ys) == 1:  # one sphere: no gauges of a second
-        case = "\n".join(line for line in case.split("\n") if "sphere: 1," not in line) + "\n"
+    gauges = [(q + str(k), k, q) for k in range(len(ys)) for q in ("z", "vz", "fz", "vy")]
+    case = sinking_case("symmetric_sinking", [0, y0, 0], [0.12, y1, 0.2], "" if BROKEN else sym, open_faces, csv,
+                        gauges)
     out = run(f"sink_{name}", case)
     sinks[name] = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
     s = json.load(open(os.path.join(out, "summary.json")))

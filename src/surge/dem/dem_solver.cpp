@@ -128,15 +128,21 @@ SURGE_HD inline PairResult sphere_pair(const DemView& v, int a, int b, std::uint
   return pair_terms<L>(in, load_law<typename L::Pair>(v.law[p]), springs_of(v.hist[p]), dt);
 }
 
-// Each pair's law constants (L::pair), once per list, written by the pair's A sphere: the
-// step reads them instead of mixing the materials again.
+// The contact law's constants of spheres a and b (L::pair, with their reduced mass).
+template <class L>
+SURGE_HD inline typename L::Pair sphere_law(const DemView& v, const Material* mats, int a, int b) {
+  const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
+  return L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar);
+}
+
+// Each pair's law constants, once per list, written by the pair's A sphere: the step
+// reads them instead of mixing the materials again.
 template <class L>
 void pair_laws(const DemView& v, const Material* mats) {
   par::parallel_for(
       v.n, SURGE_LAMBDA(int a) {
         neighbour::for_each_own_pair(v.list, a, [&](std::uint32_t, int b, std::uint32_t p) {
-          const Real mstar = v.mass[a] * v.mass[b] / (v.mass[a] + v.mass[b]);
-          store_law(v.law[p], L::pair(mats[v.material[a]], mats[v.material[b]], v.radius[a], v.radius[b], mstar));
+          store_law(v.law[p], sphere_law<L>(v, mats, a, b));
         });
       });
 }
@@ -285,8 +291,7 @@ SURGE_HD inline void wall_terms(const DemView& v, const WallsView& w, Real dt, i
 // finds within `search` of that point, with the image's position, velocity and spin (a
 // pseudovector: det(R) R w), in the grid's order (the same on any thread count).
 struct MirrorSearch {
-  neighbour::GridView grid;
-  Real search;
+  neighbour::GridView grid; // the spheres' grid of the last sort; searched within the frame's band
   const Material* mats;
 };
 SURGE_HD inline bool near_mirror(const DemView& v, const Vec3& x, domain::AxisShifts* shifts) {
@@ -309,7 +314,8 @@ SURGE_HD inline void for_each_mirror_partner(const DemView& v, const MirrorSearc
         const int image = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
         Vec3 q = xi;
         for (int k = 0; k < 3; ++k) q[k] = domain::shifted(v.mirror, k, xi[k], s[k]);
-        neighbour::for_each_neighbour(m.grid, q, m.search * m.search, [&](int j, const Vec3&, Real) {
+        const Real search = v.mirror.band.x; // the list's reach, on every axis
+        neighbour::for_each_neighbour(m.grid, q, search * search, [&](int j, const Vec3&, Real) {
           Vec3 x = v.pos[j], u = v.vel[j], w = v.omega[j];
           Real det = 1;
           for (int k = 0; k < 3; ++k)
@@ -342,7 +348,6 @@ SURGE_HD inline void mirror_terms(const DemView& v, const MirrorSearch& m, Real 
   for (int k = 0; k < max_mirror_slots; ++k) old[k] = row[k];
   const Vec3 xi = v.pos[i];
   const Real ri = v.radius[i];
-  const int ma = v.material[i];
   int kept = 0;
   for_each_mirror_partner(v, m, i, sh, [&](int j, int image, const Vec3& x, const Vec3& u, const Vec3& w) {
     const std::uint32_t key = mirror_key(image, v.id[j]);
@@ -352,11 +357,9 @@ SURGE_HD inline void mirror_terms(const DemView& v, const MirrorSearch& m, Real 
     const Vec3 d = xi - x;
     const Real dist = norm(d), rj = v.radius[j];
     if (!in_contact(dist, ri + rj, h.bonded != 0)) return;
-    const int mb = v.material[j];
-    const PairInput in =
-        sphere_pair_input(d, dist, ri, rj, v.vel[i], v.omega[i], u, w, v.mixed[ma * v.n_materials + mb]);
-    const Real mstar = v.mass[i] * v.mass[j] / (v.mass[i] + v.mass[j]);
-    const PairResult r = pair_terms<L>(in, L::pair(m.mats[ma], m.mats[mb], ri, rj, mstar), springs_of(h), dt);
+    const PairInput in = sphere_pair_input(d, dist, ri, rj, v.vel[i], v.omega[i], u, w,
+                                           v.mixed[v.material[i] * v.n_materials + v.material[j]]);
+    const PairResult r = pair_terms<L>(in, sphere_law<L>(v, m.mats, i, j), springs_of(h), dt);
     f += r.force_a;
     t += r.torque_a;
     ++used;
@@ -1012,7 +1015,7 @@ void DemSolver::step(Real dt) {
                                                tri_grid_, bodies_view(),
                                                has_wall_bodies() ? wall_react_.data() : nullptr,
                                                has_wall_bodies() ? body_flag_.data() : nullptr},
-                             detail::MirrorSearch{grid_.view(v.pos), list_reach(), materials_.data()}, dt);
+                             detail::MirrorSearch{grid_.view(v.pos), materials_.data()}, dt);
     });
     if (has_wall_bodies()) sum_body_loads();
   }
@@ -1183,8 +1186,7 @@ long DemSolver::bond_touching(Real gap) {
   for (const auto& s : h) bonds += s.bonded ? 1 : 0;
   if (mirrored()) { // each sphere's bonds to images, one per slot
     tmpu_.resize(static_cast<std::size_t>(n_));
-    detail::bond_mirrors(v, detail::MirrorSearch{grid_.view(v.pos), list_reach(), materials_.data()}, gap,
-                         tmpu_.data());
+    detail::bond_mirrors(v, detail::MirrorSearch{grid_.view(v.pos), materials_.data()}, gap, tmpu_.data());
     for (const std::uint32_t b : par::download(tmpu_)) {
       if (b > static_cast<std::uint32_t>(max_mirror_slots))
         throw std::runtime_error("DEM: a sphere would bond to " + std::to_string(b) + " mirror images, more than the " +

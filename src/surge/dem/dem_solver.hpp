@@ -305,6 +305,7 @@ private:
   void sort_spheres();
   void set_grid(); // the spheres' grid over the domain (and half a period beyond periodic faces)
   void check_mirrored(const std::vector<Sphere>& s) const;
+  [[nodiscard]] bool mirrored() const { return mirror_.any(); } // some symmetry face
   // Sorts the spheres and lists each one's partners within r_i + r_j + skin (or bonded).
   void rebuild_list();
   // Whether some sphere has moved more than half the skin since the list was built.
@@ -355,7 +356,6 @@ private:
   neighbour::UniformGrid grid_;
   Vec3 lo_{}, hi_{};
   domain::PeriodicAxes period_{};
-  [[nodiscard]] bool mirrored() const { return mirror_.any(); }
   int n_ = 0;
   Real max_radius_ = 0;
   par::Buffer<Vec3> pos_, vel_, omega_, force_, torque_, tmp3_;

@@ -436,14 +436,9 @@ void damping_keys(std::vector<KeyDoc>& k) {
                "into the zone (v <- v (1 - dt rate s^2))"});
 }
 
-std::vector<KeyDoc> build_keys() {
-  std::vector<KeyDoc> k;
+// domain: the box and its periodic and symmetry faces.
+void domain_keys(std::vector<KeyDoc>& k) {
   const std::string vec = "[x, y, z]";
-  k.push_back({"name", "text", "required", "", "no slashes", "the case's name (the default output folder out/NAME)"});
-  k.push_back({"dp", "number", "required", "m", "> 0", "particle spacing of water and SPH walls (DEM-only: unused)"});
-  k.push_back({"time", "mapping", "", "", "", "times of the run"});
-  add(k, "time.", time_fields());
-  k.push_back({"gravity", vec, "[0, 0, -9.81]", "m/s^2", "", "gravity"});
   k.push_back({"domain", "mapping", "required", "", "", "the box water may occupy (grown by the wall layers)"});
   k.push_back({"domain.min", vec, "required", "m", "", "lowest corner"});
   k.push_back({"domain.max", vec, "required", "m", "> min", "highest corner"});
@@ -457,6 +452,17 @@ std::vector<KeyDoc> build_keys() {
                "tank's answer (SPH, DEM and the coupling: a sphere meets the mirror images of its neighbours and of "
                "itself; walls and water end at the faces, box tanks leave them open; no sphere may cross a symmetry "
                "face, DEM planes lie along its axis, DEM meshes and periodic faces not yet with spheres)"});
+}
+
+std::vector<KeyDoc> build_keys() {
+  std::vector<KeyDoc> k;
+  const std::string vec = "[x, y, z]";
+  k.push_back({"name", "text", "required", "", "no slashes", "the case's name (the default output folder out/NAME)"});
+  k.push_back({"dp", "number", "required", "m", "> 0", "particle spacing of water and SPH walls (DEM-only: unused)"});
+  k.push_back({"time", "mapping", "", "", "", "times of the run"});
+  add(k, "time.", time_fields());
+  k.push_back({"gravity", vec, "[0, 0, -9.81]", "m/s^2", "", "gravity"});
+  domain_keys(k);
   k.push_back({"sph", "mapping", "", "", "", "the water's model"});
   add(k, "sph.", sph_fields());
   k.push_back({"fluid", "list", "", "", "", "boxes of water, each filled on the lattice (i + 1/2) dp, centred"});

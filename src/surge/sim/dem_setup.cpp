@@ -15,27 +15,34 @@
 namespace surge::sim {
 
 namespace {
+// A DEM solver for the case's walls, periodic and symmetry faces, with the given local
+// damping and spheres; a sphere set the faces cannot take (a period too short for it, a
+// sphere across a symmetry face) is an input error at `line` and `key`.
+dem::DemSolver solver_for(const Case& c, const DemSetup& s, Real damping, const std::vector<dem::Sphere>& spheres,
+                          int line, const char* key) {
+  const Vec3 hi(c.domain.max - c.domain.min);
+  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
+  solver.set_periodic(domain::periodic_axes(c));
+  solver.set_symmetry(c.symmetry);
+  solver.set_wall_triangles(s.triangles);
+  solver.set_local_damping(damping);
+  try {
+    solver.set_spheres(spheres);
+  } catch (const std::invalid_argument& e) { throw InputError(c.source, line, key, e.what()); }
+  return solver;
+}
+
 // Lets a pack fall and come to rest under gravity against the case's DEM walls (its own
 // spheres only, Cundall local damping 0.7) for pk.settle seconds (SPEC §3: local damping
 // "useful to settle a pack"). Returns the settled centres (absolute).
 std::vector<geometry::SphereSpec> settle_pack(const Case& c, const DemSetup& s, const DemPackSpec& pk,
                                               const std::vector<geometry::SphereSpec>& list) {
   if (list.empty()) return list;
-  const Vec3 hi(c.domain.max - c.domain.min);
-  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
-  solver.set_periodic(domain::periodic_axes(c));
-  solver.set_symmetry(c.symmetry);
-  solver.set_wall_triangles(s.triangles);
-  solver.set_local_damping(Real(0.7));
   std::vector<dem::Sphere> spheres;
   spheres.reserve(list.size());
   for (const auto& sp : list)
     spheres.push_back({Vec3(sp.centre - s.origin), Vec3{}, Vec3{}, static_cast<Real>(sp.radius), pk.material, false});
-  try {
-    solver.set_spheres(spheres);
-  } catch (const std::invalid_argument& e) { // a period too short, a sphere across a symmetry face
-    throw InputError(c.source, pk.line, "dem.packs", e.what());
-  }
+  dem::DemSolver solver = solver_for(c, s, Real(0.7), spheres, pk.line, "dem.packs");
   const Real dt = solver.critical_dt(static_cast<Real>(c.dem.dt_factor));
   const long steps = static_cast<long>(std::ceil(pk.settle / static_cast<double>(dt)));
   for (long k = 0; k < steps; ++k) solver.step(dt);
@@ -243,18 +250,8 @@ std::string dem_step_warning(const Case& c, const dem::DemSolver& solver) {
 }
 
 dem::DemSolver make_dem_solver(const Case& c, const DemSetup& s) {
-  const Vec3 hi(c.domain.max - c.domain.min);
-  dem::DemSolver solver(s.materials, s.planes, Vec3(c.gravity), Vec3{}, hi, s.contact_law);
-  solver.set_periodic(domain::periodic_axes(c));
-  solver.set_symmetry(c.symmetry);
-  solver.set_wall_triangles(s.triangles);
-  solver.set_local_damping(static_cast<Real>(c.dem.local_damping));
-  try {
-    solver.set_spheres(s.spheres);
-  } catch (const std::invalid_argument& e) { // a period too short for the spheres, a sphere across a symmetry face
-    throw InputError(c.source, 0, c.any_symmetry() ? "domain.symmetry" : "domain.periodic", e.what());
-  }
-  return solver;
+  return solver_for(c, s, static_cast<Real>(c.dem.local_damping), s.spheres, 0,
+                    c.any_symmetry() ? "domain.symmetry" : "domain.periodic");
 }
 
 io::SphereFrame sphere_frame(const dem::DemSolver& solver) {
