@@ -3,8 +3,9 @@ bits -- gauges, every particle file, the checkpoint -- on a dam break, on the co
 slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
 on Archimedes with mDBC and the symplectic integrator, on
 the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move),
-on a periodic flume with a damping zone, on a dam break with a symmetry plane (images) and on
-spheres sinking on a periodic face and against their mirror image;
+on a periodic flume with a damping zone, on a dam break with a symmetry plane (images), on
+slabs along a periodic axis (a box periodic along every axis, a flume periodic along its
+length) and on spheres sinking on a periodic face and against their mirror image;
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
 input, divergence and Ctrl-C end every process with the single-process exit codes.
 
@@ -185,6 +186,40 @@ with open(mirror_case, "w") as f:
             .replace("open: [zmax]", "open: [zmax, xmax]"))
 mir = runs_on([1, 3], "dambreak_mirror", mirror_case, ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
 same_files(mir[1], mir[3], "dam break with a symmetry plane across the slabs, 1 and 3 processes")
+
+# Slabs along a periodic axis (a ring): water moving uniformly through a box periodic along
+# every axis, and a flume periodic along its length (mDBC, symplectic) with a hump of water
+# running across the face at 1 m/s: 1, 2 and 3 processes.
+uniform_case = os.path.join(WORK, "uniform_all_periodic.yaml")
+with open(uniform_case, "w") as f:
+    f.write("""name: uniform_all_periodic
+dp: 0.01
+gravity: [0, 0, 0]
+time: {end: 0.1, output_every: 0.05}
+domain: {min: [0, 0, 0], max: [0.1, 0.1, 0.1], periodic: [xmin, xmax, ymin, ymax, zmin, zmax]}
+sph: {c0: 10, hmax: 0.1}
+fluid: [{box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}, velocity: [0.5, 0.2, -0.1]}]
+""")
+ring_case = os.path.join(WORK, "ring_flume.yaml")
+with open(ring_case, "w") as f:
+    f.write("""name: ring_flume
+dp: 0.01
+time: {end: 0.05, output_every: 0.025, gauge_every: 0.005}
+domain: {min: [0, 0, 0], max: [0.9, 0.06, 0.3], periodic: [xmin, xmax]}
+sph: {boundary: mdbc, integrator: symplectic}
+fluid:
+  - {box: {min: [0, 0, 0], max: [0.9, 0.06, 0.08]}, velocity: [1, 0, 0]}
+  - {box: {min: [0.8, 0, 0.08], max: [0.9, 0.06, 0.16]}, velocity: [1, 0, 0]}
+walls: [{name: tank, box: {min: [0, 0, 0], max: [0.9, 0.06, 0.3]}, open: [zmax, xmin, xmax]}]
+gauges:
+  - {name: H0, type: height, x: 0.005, y: 0.03}
+  - {name: P1, type: pressure, at: [0.895, 0.03, 0.02]}
+""")
+for name, case in (("uniform_all_periodic", uniform_case), ("ring_flume", ring_case)):
+    rr = runs_on([1, 2, 3], name, case, [])
+    for n in (2, 3):
+        same_files(rr[1], rr[n], f"{name}: slabs along the periodic x axis, 1 and {n} processes")
+    check(summary(rr[3])["distributed"]["axis"] == "x", f"{name}: slabs along x")
 
 # A sphere sinking on the face of a box periodic along x and y (slabs along z): spheres
 # and their body particles across a periodic face, 1 and 3 processes.

@@ -79,8 +79,8 @@ int longest_axis(const Vec3& lo, const Vec3& hi) {
   return a;
 }
 
-SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reach)
-    : axis_(axis), lo_(lo), hi_(std::max(hi, lo)), reach_(reach) {
+SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reach, bool ring)
+    : axis_(axis), ring_(ring), lo_(lo), hi_(std::max(hi, lo)), reach_(reach) {
   // Faces fall on bin edges; bins of an eighth of the reach keep the load even to a few
   // per cent without a histogram larger than 64 Ki bins.
   bin_ = std::max((hi_ - lo_) / 65536.0, reach_ / 8.0);
@@ -95,7 +95,9 @@ SlabDecomposition::SlabDecomposition(int axis, double lo, double hi, double reac
 
 void SlabDecomposition::cuts_changed() { par::upload(cuts_dev_, cuts_); }
 
-SlabView SlabDecomposition::host_view() const { return {cuts_.data(), comm::size(), comm::rank(), reach_}; }
+SlabView SlabDecomposition::host_view() const {
+  return {cuts_.data(), comm::size(), comm::rank(), reach_, ring_ ? 1 : 0, lo_, hi_};
+}
 
 int SlabDecomposition::owner(Real x) const { return host_view().owner(x); }
 
@@ -175,7 +177,7 @@ ExchangeStats SlabDecomposition::distribute(particles::HostParticles& all) const
     const Real x = all.pos[i][axis_];
     if (sv.owner(x) == sv.me)
       push(mine, all, i, 0);
-    else if (sv.in_reach_of(x, sv.me))
+    else if (sv.needs(x, sv.me))
       push(halo, all, i, 1);
   }
   ExchangeStats s;
@@ -189,9 +191,13 @@ void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vec
   const SlabView sv = host_view();
   for (std::size_t i = 0; i < h.size(); ++i) {
     const Real x = h.pos[i][axis_];
-    // Slabs are ordered: walk away from this one while x is within reach.
-    for (int r = sv.me - 1; r >= 0 && sv.in_reach_of(x, r); --r) append(out[r], h, i);
-    for (int r = sv.me + 1; r < sv.ranks && sv.in_reach_of(x, r); ++r) append(out[r], h, i);
+    // Slabs are ordered: walk away from this one while x is within reach; in a ring, the
+    // first and last slabs too, unless the walk reached them.
+    int first = sv.me, last = sv.me;
+    for (int r = sv.me - 1; r >= 0 && sv.in_reach_of(x, r); --r) append(out[first = r], h, i);
+    for (int r = sv.me + 1; r < sv.ranks && sv.in_reach_of(x, r); ++r) append(out[last = r], h, i);
+    if (first > 0 && sv.needs(x, 0)) append(out[0], h, i);
+    if (last < sv.ranks - 1 && sv.needs(x, sv.ranks - 1)) append(out[sv.ranks - 1], h, i);
   }
 }
 

@@ -14,10 +14,14 @@ namespace surge::domain {
 
 // The slab faces as a kernel sees them (cuts in the execution space): who owns x, and
 // whether x is within reach of another process's slab. One definition for host and device.
+// On a periodic axis the slabs form a ring: the first continues beyond the domain's hi
+// face, the last beyond its lo face.
 struct SlabView {
   const double* cuts = nullptr; // ranks + 1 entries; cuts[0] = -inf, cuts[ranks] = +inf
   int ranks = 1, me = 0;
   double reach = 0;
+  int ring = 0;                    // 1: the axis is periodic
+  double lo_face = 0, hi_face = 0; // the domain's faces along the axis
   [[nodiscard]] SURGE_HD int owner(Real x) const {
     if (!std::isfinite(x)) return me; // diverged: kept where it is, for the step's checks to see
     const auto xd = static_cast<double>(x);
@@ -36,9 +40,19 @@ struct SlabView {
     const auto xd = static_cast<double>(x);
     return xd >= cuts[r] - reach && xd < cuts[r + 1] + reach;
   }
-  // x, owned here, lies within reach of another slab (slabs are ordered, so of a neighbour).
+  // Process r needs a copy of x: x lies within reach of slab r or, in a ring, within reach
+  // of the face across which slab r continues (the first slab takes what lies near hi, the
+  // last what lies near lo, where they are: each process's images move them a period).
+  [[nodiscard]] SURGE_HD bool needs(Real x, int r) const {
+    if (in_reach_of(x, r)) return true;
+    const auto xd = static_cast<double>(x);
+    return ring != 0 && ((r == 0 && xd >= hi_face - reach) || (r == ranks - 1 && xd < lo_face + reach));
+  }
+  // x, owned here, is needed by another slab (slabs are ordered, so by a neighbour, or in
+  // a ring by the first or last).
   [[nodiscard]] SURGE_HD bool near_other(Real x) const {
-    return (me > 0 && in_reach_of(x, me - 1)) || (me + 1 < ranks && in_reach_of(x, me + 1));
+    return (me > 0 && needs(x, me - 1)) || (me + 1 < ranks && needs(x, me + 1)) ||
+           (ring != 0 && ((me > 1 && needs(x, 0)) || (me + 2 < ranks && needs(x, ranks - 1))));
   }
 };
 
@@ -51,9 +65,12 @@ struct ExchangeStats {
 class SlabDecomposition {
 public:
   // Slabs along `axis` over [lo, hi] (local coordinates; particles beyond belong to the
-  // first or last slab); halo copies reach `reach` beyond each face.
-  SlabDecomposition(int axis, double lo, double hi, double reach);
-
+  // first or last slab); halo copies reach `reach` beyond each face. `ring`: the axis is
+  // periodic, the slabs form a ring (SlabView). Water that crossed the periodic face needs
+  // nothing here: until the next exchange moves it, its owner's images bring it back (as
+  // on one process) and its halo copy, sent across the ring, is brought back alike.
+  SlabDecomposition(int axis, double lo, double hi, double reach, bool ring = false);
+  [[nodiscard]] bool ring() const { return ring_; }
   [[nodiscard]] int axis() const { return axis_; }
   [[nodiscard]] double reach() const { return reach_; }
   // Slab faces: process r owns [cuts[r], cuts[r+1]) along the axis.
@@ -105,6 +122,7 @@ private:
   par::Buffer<std::uint32_t> sel_index_; // the exchange's selection: particle indices
   par::Buffer<std::uint8_t> sel_code_;   // ... and what each one does
   int axis_;
+  bool ring_; // the axis is periodic: the slabs form a ring
   double lo_, hi_, reach_, bin_;
   std::vector<double> cuts_;
 };

@@ -1,6 +1,5 @@
 #include "surge/sim/distributed_run.hpp"
 
-#include "surge/core/error.hpp"
 #include "surge/domain/comm.hpp"
 
 #include <chrono>
@@ -20,18 +19,12 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
     : solver_(solver) {
   if (!domain::comm::built_with_mpi()) return;
   const Vec3 lo{}, hi(c.domain.max - c.domain.min);
-  // Slabs along the longest axis that is not periodic (the periodic images are each
-  // process's own; the slab faces do not wrap).
-  Vec3 extent = hi;
-  for (int k = 0; k < 3; ++k)
-    if (c.periodic[static_cast<std::size_t>(k)]) extent[k] = 0;
-  const bool all_periodic = c.periodic[0] && c.periodic[1] && c.periodic[2];
-  if (all_periodic && ranks() > 1)
-    throw InputError(c.source, 0, "domain.periodic",
-                     "a domain periodic along every axis runs on one process only (the slabs need an axis that "
-                     "is not periodic)");
-  const int axis = all_periodic ? 0 : domain::longest_axis(lo, extent);
-  slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach());
+  // Slabs along the longest axis; on a periodic axis they form a ring (the first slab
+  // takes halo copies of what lies near the hi face, the last of what lies near lo, and
+  // each process's images move them a period).
+  const int axis = domain::longest_axis(lo, hi);
+  slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach(),
+                 c.periodic[static_cast<std::size_t>(axis)]);
   dist_ = slabs_->distribution();
   solver.set_distribution(dist_);
   if (coupling) coupling->set_distribution(dist_, c.coupling.force_sum == "per_sphere");
