@@ -70,7 +70,6 @@ public:
   // nothing here: until the next exchange moves it, its owner's images bring it back (as
   // on one process) and its halo copy, sent across the ring, is brought back alike.
   SlabDecomposition(int axis, double lo, double hi, double reach, bool ring = false);
-  [[nodiscard]] bool ring() const { return ring_; }
   [[nodiscard]] int axis() const { return axis_; }
   [[nodiscard]] double reach() const { return reach_; }
   // Slab faces: process r owns [cuts[r], cuts[r+1]) along the axis.
