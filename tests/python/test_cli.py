@@ -70,6 +70,15 @@ bad_cases = {
     "negative_dp": (GOOD.replace("dp: 0.02", "dp: -0.02"), "'dp': particle spacing must be positive"),
     "outside": (GOOD.replace("max: [0.1, 0.1, 0.2]", "max: [0.1, 0.1, 0.5]"), "outside the domain"),
     "empty_region": (GOOD.replace("max: [0.1, 0.1, 0.2]", "max: [0.1, 0.01, 0.2]"), "thinner than dp"),
+    "unknown_shifting": (GOOD.replace("fluid:", "sph: {shifting: lind}\nfluid:"), "'sph.shifting'"),
+    "unknown_viscosity": (GOOD.replace("fluid:", "sph: {viscosity: sps}\nfluid:"), "'sph.viscosity'"),
+    "negative_shifting": (GOOD.replace("fluid:", "sph: {shifting: fickian, shifting_coefficient: -2}\nfluid:"),
+                          "'sph.shifting_coefficient'"),
+    "negative_nu": (GOOD.replace("fluid:", "sph: {viscosity: laminar, nu: -1.0e-6}\nfluid:"), "'sph.nu'"),
+    "particles_and_box": (GOOD.replace("  - box: {min", "  - particles: water.csv\n    box: {min"),
+                          "exactly one of 'box', 'reservoir' or 'particles'"),
+    "missing_particles": (GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}", "  - particles: none.csv"),
+                          "'fluid.0.particles'"),
 }
 for name, (text, fragment) in bad_cases.items():
     path = write(f"bad_{name}.yaml", text)
@@ -83,6 +92,18 @@ for name, (text, fragment) in bad_cases.items():
         if name not in ("malformed",):
             check(":" in lines[0][len("error: " + path):][:8], f"{name}: message gives a line number")
     check(not os.path.exists(out), f"{name}: nothing written to the output folder")
+
+# A particle table with a bad row: the table's file and line named, exit 2.
+write("water_bad.csv", "x,y,z,vx,vy,vz\n0.01,0.01,0.01,0,0,0\n0.03,0.01,zero,0,0,0\n")
+r = run(["check", write("bad_table.yaml", GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}",
+                                                        "  - particles: water_bad.csv"))])
+check(r.returncode == 2 and "water_bad.csv:3" in r.stderr and "'zero' is not a finite number" in r.stderr,
+      f"a bad particle table names its file and line ({r.stderr.strip()[:160]})")
+write("water_out.csv", "0.01,0.01,0.01,0,0,0\n0.01,0.01,0.9,0,0,0,1000\n")
+r = run(["check", write("out_table.yaml", GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}",
+                                                        "  - particles: water_out.csv"))])
+check(r.returncode == 2 and "water_out.csv:2" in r.stderr and "outside the domain" in r.stderr,
+      f"a table's particle outside the domain is named ({r.stderr.strip()[:160]})")
 
 r = run(["check", write("good.yaml", GOOD), "--set", "time.ned=1"])
 check(r.returncode == 2 and "--set" in r.stderr, "--set typo is rejected and attributed to --set")

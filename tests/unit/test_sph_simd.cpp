@@ -28,7 +28,7 @@ namespace {
 // The sum of the magnitudes of particle i's pair terms, per rate: the scale of a reordered
 // sum's rounding.
 struct TermScale {
-  Real acc = 0, drho = 0;
+  Real acc = 0, drho = 0, grad_c = 0, div_r = 0;
 };
 
 TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p,
@@ -45,24 +45,29 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
                             fluid_i && p.kind[j] == fluid, one);
         t.acc += norm(one.acc);
         t.drho += std::fabs(one.drho) + std::fabs(prm.delta * prm.kernel.h * prm.eos.c0 * one.diff);
+        t.grad_c += norm(one.grad_c);
+        t.div_r += std::fabs(one.div_r);
       });
   return t;
 }
 
 bool same_bits(const sph::Rates& a, const sph::Rates& b) {
   return std::memcmp(&a.acc, &b.acc, sizeof a.acc) == 0 && std::memcmp(&a.drho, &b.drho, sizeof a.drho) == 0 &&
-         std::memcmp(&a.vsig, &b.vsig, sizeof a.vsig) == 0 && std::memcmp(&a.wall, &b.wall, sizeof a.wall) == 0;
+         std::memcmp(&a.vsig, &b.vsig, sizeof a.vsig) == 0 && std::memcmp(&a.wall, &b.wall, sizeof a.wall) == 0 &&
+         std::memcmp(&a.shift, &b.shift, sizeof a.shift) == 0;
 }
 
 // The rates a batched copy stores for every particle (the blocks the solver hands it).
 std::vector<sph::Rates> batched_all(sph::RatesFn f, const sph::WcsphSolver& s, const neighbour::GridView& g,
                                     const particles::ParticleView& p) {
   std::vector<sph::WallChoice> faces(static_cast<std::size_t>(p.n));
+  std::vector<sph::ShiftSums> shift(static_cast<std::size_t>(p.n));
+  const sph::RatesOut out{faces.data(), s.params().shift.on() ? shift.data() : nullptr};
   for (int b = 0; b < p.n; b += sph::rates_block)
-    f(s.params(), g, p, s.hold_view(), faces.data(), b, std::min(p.n, b + sph::rates_block));
-  std::vector<sph::Rates> out(static_cast<std::size_t>(p.n));
-  for (int i = 0; i < p.n; ++i) out[i] = sph::Rates{p.acc[i], p.drho[i], p.vsig[i], faces[i]};
-  return out;
+    f(s.params(), g, p, s.hold_view(), out, b, std::min(p.n, b + sph::rates_block));
+  std::vector<sph::Rates> rates(static_cast<std::size_t>(p.n));
+  for (int i = 0; i < p.n; ++i) rates[i] = sph::Rates{p.acc[i], p.drho[i], p.vsig[i], faces[i], shift[i]};
+  return rates;
 }
 
 // Compares every particle's rates; returns how many particles had each batch tail (pairs
@@ -90,6 +95,10 @@ std::array<int, 8> compare_rates(sph::WcsphSolver& s, const std::string& what) {
     EXPECT_LE(norm(got.acc - ref.acc), 1e-5f * t.acc) << what << ": particle " << i;
     EXPECT_LE(std::fabs(got.drho - ref.drho), 1e-5f * t.drho) << what << ": particle " << i;
     EXPECT_EQ(got.vsig, ref.vsig) << what << ": particle " << i;
+    if (prm.shift.on()) {
+      EXPECT_LE(norm(got.shift.grad_c - ref.shift.grad_c), 1e-5f * t.grad_c) << what << ": particle " << i;
+      EXPECT_LE(std::fabs(got.shift.div_r - ref.shift.div_r), 1e-5f * t.div_r) << what << ": particle " << i;
+    }
     EXPECT_EQ(std::memcmp(&got.wall, &ref.wall, sizeof ref.wall), 0) << what << ": particle " << i;
     int pairs = 0;
     neighbour::for_each_neighbour(
@@ -120,6 +129,17 @@ TEST(SphSimd, DynamicBoundaryDamBreakMatchesScalar) {
 TEST(SphSimd, MdbcAndFourtakasMatchScalar) {
   auto s = advanced(test::tank_case(0.01, 0.0, "sph: {boundary: mdbc, diffusion: fourtakas}\n"), 40);
   compare_rates(s, "mdbc + fourtakas");
+}
+
+// The laminar viscosity's term and the shifting sums (grad C, div r), on both wall models.
+TEST(SphSimd, LaminarViscosityAndShiftingMatchScalar) {
+  auto s = advanced(test::tank_case(0.01, 0.0, "sph: {viscosity: laminar, nu: 1.0e-4, shifting: fickian}\n"), 40);
+  ASSERT_TRUE(s.params().shift.on());
+  compare_rates(s, "laminar + shifting");
+  auto m = advanced(
+      test::tank_case(0.01, 0.0, "sph: {boundary: mdbc, viscosity: laminar, shifting: delta_plus, integrator: symplectic}\n"),
+      40);
+  compare_rates(m, "mdbc + laminar + delta_plus shifting");
 }
 
 // mDBC's boundary densities with the ghost sums 8 neighbours at a time (mdbc_range) against

@@ -34,6 +34,12 @@ struct TimeConfig {
 struct SphConfig {
   double h_over_dp = 1.2;
   double alpha = 0.01;
+  std::string viscosity = "artificial"; // artificial (SPEC 2.4) | laminar (SPEC 8, Morris et al. 1997)
+  double nu = 1.0e-6;                   // kinematic viscosity [m^2/s] (laminar)
+  std::string shifting = "none";        // none | fickian (SPEC 8, Lind et al. 2012)
+  double shifting_coefficient = 2.0;    // A
+  double shifting_mach = 0.1;           // delta_plus: the flow's Mach number (speed in D: Ma c0)
+  double free_surface = 2.75;           // position divergence below which a particle is at the surface
   double delta = 0.1;
   double eta = 20.0;
   double cfl = 0.2;
@@ -60,7 +66,14 @@ struct FluidRegion {
   bool reservoir = false;
   double level = 0;              // the still water surface [m]
   double seed_x = 0, seed_y = 0; // a point of the water's surface, in the reservoir
+  // Water given particle by particle (`particles`: a table of x, y, z, vx, vy, vz and
+  // optionally rho; rho 0 where absent: the still water's below the region's top). Its
+  // box is the particles' bounds grown by dp/2.
+  std::string particles; // the file, as resolved
+  std::vector<Vec3d> given_pos, given_vel;
+  std::vector<double> given_rho;
   int line = 0;
+  [[nodiscard]] bool given() const { return !particles.empty(); }
 };
 
 enum class Face { XMin, XMax, YMin, YMax, ZMin, ZMax };

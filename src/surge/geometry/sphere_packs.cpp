@@ -1,6 +1,7 @@
 #include "surge/geometry/sphere_packs.hpp"
 
 #include "surge/core/error.hpp"
+#include "surge/core/number_rows.hpp"
 #include "surge/geometry/sphere_index.hpp"
 
 #include <cmath>
@@ -105,30 +106,12 @@ std::vector<SphereSpec> random_pack(const PackRegion& region, double radius, lon
 }
 
 std::vector<SphereSpec> read_sphere_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot open the sphere list");
   std::vector<SphereSpec> out;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (const auto h = line.find('#'); h != std::string::npos) line.resize(h);
-    for (char& ch : line)
-      if (ch == ',' || ch == ';' || ch == '\t') ch = ' ';
-    std::istringstream ls(line);
-    std::string first;
-    if (!(ls >> first)) continue;
-    if (out.empty() && (first == "x" || first == "X")) continue; // header
-    SphereSpec s{};
-    std::istringstream all(line);
-    if (!(all >> s.centre.x >> s.centre.y >> s.centre.z >> s.radius) || !std::isfinite(s.radius))
-      throw InputError(path, lineno, "", "expected four numbers: x, y, z, r");
-    std::string extra;
-    if (all >> extra) throw InputError(path, lineno, "", "more than four values on the line");
-    if (!(s.radius > 0)) throw InputError(path, lineno, "", "radius must be positive");
+  for (const NumberRow& row : read_number_rows(path, 4, 4, "x, y, z, r", "sphere list")) {
+    const SphereSpec s{{row.v[0], row.v[1], row.v[2]}, row.v[3]};
+    if (!(s.radius > 0)) throw InputError(path, row.line, "", "radius must be positive");
     out.push_back(s);
   }
-  if (out.empty()) throw InputError(path, 0, "", "the sphere list is empty");
   return out;
 }
 

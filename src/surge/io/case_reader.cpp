@@ -2,6 +2,7 @@
 
 #include "surge/core/error.hpp"
 #include "surge/core/gauge_types.hpp"
+#include "surge/core/number_rows.hpp"
 #include "surge/io/case_schema.hpp"
 #include "surge/motion/motion_law.hpp"
 
@@ -396,13 +397,46 @@ void parse_dem(const Reader& r, const YAML::Node& d, Case& c) {
       [&](const YAML::Node& pk, const std::string& path) { dem.packs.push_back(parse_pack(r, pk, path, c)); });
 }
 
+// fluid[].particles: the table's particles, each inside the domain; the region's box their
+// bounds grown by dp/2 within the domain.
+void read_given_particles(const Reader& r, const YAML::Node& n, const std::string& key, const Case& c,
+                          FluidRegion& reg) {
+  reg.particles = resolve_file(r, n, key, "particle table ");
+  const auto rows = read_number_rows(reg.particles, 6, 7, "x, y, z, vx, vy, vz[, rho]", "particle table");
+  const Vec3d first{rows[0].v[0], rows[0].v[1], rows[0].v[2]};
+  Box bounds{first, first};
+  for (const auto& row : rows) {
+    const Vec3d x{row.v[0], row.v[1], row.v[2]};
+    if (!c.domain.contains(x, 1e-9))
+      throw InputError(reg.particles, row.line, "", "the particle lies outside the domain");
+    const double rho = row.v.size() == 7 ? row.v[6] : 0;
+    if (row.v.size() == 7 && !(rho > 0)) throw InputError(reg.particles, row.line, "", "rho must be positive");
+    reg.given_pos.push_back(x);
+    reg.given_vel.push_back({row.v[3], row.v[4], row.v[5]});
+    reg.given_rho.push_back(rho);
+    for (int k = 0; k < 3; ++k) {
+      bounds.min[k] = std::min(bounds.min[k], x[k]);
+      bounds.max[k] = std::max(bounds.max[k], x[k]);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    reg.box.min[k] = std::max(c.domain.min[k], bounds.min[k] - c.dp / 2);
+    reg.box.max[k] = std::min(c.domain.max[k], bounds.max[k] + c.dp / 2);
+  }
+}
+
 FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string& path, const Case& c) {
   r.check_keys(f, path, keys_under("fluid[]"));
   FluidRegion reg;
-  if (f["box"].IsDefined() == f["reservoir"].IsDefined())
-    r.fail(f, path, "a fluid region needs exactly one of 'box' or 'reservoir'");
+  if ((f["box"].IsDefined() ? 1 : 0) + (f["reservoir"].IsDefined() ? 1 : 0) + (f["particles"].IsDefined() ? 1 : 0) !=
+      1)
+    r.fail(f, path, "a fluid region needs exactly one of 'box', 'reservoir' or 'particles'");
   read_fields(r, f, path, fluid_fields(), reg);
   reg.line = f.Mark().line + 1;
+  if (f["particles"].IsDefined()) {
+    read_given_particles(r, f["particles"], path + ".particles", c, reg);
+    return reg;
+  }
   if (const auto res = f["reservoir"]; res.IsDefined()) {
     const std::string rp = path + ".reservoir";
     r.check_keys(res, rp, {"level", "seed"});
@@ -545,7 +579,7 @@ WallSpec parse_wall(const Reader& r, const YAML::Node& w, const std::string& pat
 // or clear of it.
 void check_fluid_in_tanks(const Reader& r, const YAML::Node& root, const Case& c) {
   for (std::size_t i = 0; i < c.fluid.size(); ++i) {
-    if (c.fluid[i].reservoir) continue; // bounded by the walls themselves
+    if (c.fluid[i].reservoir || c.fluid[i].given()) continue; // bounded by the walls themselves; as the user gives it
     const Box& f = c.fluid[i].box;
     for (const auto& w : c.walls) {
       if (w.is_mesh || w.solid) continue;
@@ -1177,6 +1211,8 @@ std::string to_yaml(const Case& c) {
       e << YAML::Key << "reservoir" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "level"
         << YAML::Value << f.level << YAML::Key << "seed" << YAML::Value << YAML::Flow << YAML::BeginSeq << f.seed_x
         << f.seed_y << YAML::EndSeq << YAML::EndMap;
+    } else if (f.given()) {
+      e << YAML::Key << "particles" << YAML::Value << f.particles;
     } else {
       e << YAML::Key << "box" << YAML::Value;
       write_box(e, f.box);

@@ -78,6 +78,36 @@ const std::vector<Field<SphConfig>>& sph_fields() {
   static const std::vector<Field<S>> f{
       {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
       {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2)"},
+      {"viscosity",
+       &S::viscosity,
+       "",
+       {},
+       {"artificial", "laminar"},
+       "momentum's viscous term: artificial (Monaghan's, coefficient alpha) or laminar (Morris et al. 1997, the "
+       "water's kinematic viscosity nu; walls drag with their own velocity)"},
+      {"nu", &S::nu, "m^2/s", non_negative(), {}, "kinematic viscosity of the water (laminar)"},
+      {"shifting",
+       &S::shifting,
+       "",
+       {},
+       {"none", "fickian", "delta_plus"},
+       "particle shifting: none; fickian (Lind et al. 2012: each fluid particle moved down the gradient of the "
+       "particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et al. "
+       "2017: A h (Ma c0) dt, each pair weighted against clumping)"},
+      {"shifting_coefficient",
+       &S::shifting_coefficient,
+       "-",
+       positive(),
+       {},
+       "shifting's A (fickian: DualSPHysics's 2; delta_plus: 4 is Sun et al.'s CFL Ma (2h)^2)"},
+      {"shifting_mach", &S::shifting_mach, "-", positive(), {}, "delta_plus: the flow's Mach number"},
+      {"free_surface",
+       &S::free_surface,
+       "-",
+       between(0, true, 3, true),
+       {},
+       "a particle whose position divergence (3 inside the water) is below this lies at the free surface: not "
+       "shifted, and flagged in the frames' surface field"},
       {"delta", &S::delta, "-", non_negative(), {}, "delta-SPH density diffusion coefficient (SPEC 2.3)"},
       {"eta", &S::eta, "-", positive(), {}, "speed of sound over sqrt(g hmax) when c0 is 0 (SPEC 2.4)"},
       {"cfl",
@@ -472,6 +502,8 @@ std::vector<KeyDoc> build_keys() {
   k.push_back({"fluid[].reservoir.level", "number", "required", "m", "in the domain", "the still water surface"});
   k.push_back({"fluid[].reservoir.seed", "[x, y]", "required", "m", "on the water",
                "a point of the lake: water is placed where it connects to it"});
+  k.push_back({"fluid[].particles", "file", "", "", "x, y, z, vx, vy, vz[, rho] per line",
+               "water given particle by particle (a wave's initial state; relative to the case file)"});
   add(k, "fluid[].", fluid_fields());
   k.push_back({"walls", "list", "", "", "", "SPH walls: box tanks, solid boxes, triangle meshes"});
   k.push_back({"walls[].name", "text", "wallN", "", "unique", "name for force gauges"});

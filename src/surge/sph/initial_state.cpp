@@ -98,11 +98,22 @@ InitialState build_initial_state(const Case& c) {
   std::uint32_t next_id = 0;
   auto local = [&](const Vec3d& p) { return Vec3(p - s.origin); };
   const Vec3d lattice = geometry::lattice_origin(c); // the domain's corner without reservoirs
-  for (const auto& f : c.fluid)
+  for (const auto& f : c.fluid) {
+    if (f.given()) { // as given: no wall test (the table is the user's state)
+      for (std::size_t k = 0; k < f.given_pos.size(); ++k) {
+        const Vec3d& p = f.given_pos[k];
+        const Real rho = f.given_rho[k] > 0 ? static_cast<Real>(f.given_rho[k]) : still_water_density(c, eos, f, p);
+        s.particles.push(local(p), Vec3(f.given_vel[k]), rho, Kind::Fluid, next_id++);
+      }
+      s.n_fluid += f.given_pos.size();
+      s.fluid_volume_asked += static_cast<double>(f.given_pos.size()) * c.dp * c.dp * c.dp;
+      continue;
+    }
     for (const auto& p : fluid_points(c, f, meshes, lattice, s)) {
       s.particles.push(local(p), Vec3(f.velocity), still_water_density(c, eos, f, p), Kind::Fluid, next_id++);
       ++s.n_fluid;
     }
+  }
   s.first_boundary_id = next_id;
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];

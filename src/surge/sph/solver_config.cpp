@@ -10,6 +10,15 @@ SolverConfig solver_config(const Case& c) {
   p.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
   p.dp = static_cast<Real>(c.dp);
   p.alpha = static_cast<Real>(c.sph.alpha);
+  p.viscosity = c.sph.viscosity == "laminar" ? Viscosity::Laminar : Viscosity::Artificial;
+  p.nu = static_cast<Real>(c.sph.nu);
+  if (c.sph.shifting != "none") p.shift.coefficient = static_cast<Real>(c.sph.shifting_coefficient);
+  if (c.sph.shifting == "delta_plus") { // Sun et al. 2017: CFL Ma (2h)^2 = 4 h (Ma c0) dt
+    p.shift.speed = static_cast<Real>(c.sph.shifting_mach) * p.eos.c0;
+    p.shift.clump = Real(0.2);
+    p.shift.inv_w_dp = 1 / p.kernel.w(p.dp);
+  }
+  p.shift.surface = static_cast<Real>(c.sph.free_surface);
   p.delta = static_cast<Real>(c.sph.delta);
   p.gravity = Vec3(c.gravity);
   p.fourtakas = c.sph.diffusion == "fourtakas";

@@ -10,6 +10,11 @@
 //   Pi_ij = -alpha c0 mu_ij / rho_mean,  mu_ij = h v_ij.r_ij/(r^2+0.01h^2) when v_ij.r_ij < 0
 //         (Monaghan 1992; the standard form with rho_mean = (rho_i+rho_j)/2, not the
 //          paper's Eq. 21 which divides by rho_i+rho_j)
+//   or, with sph.viscosity: laminar (Morris et al. 1997, in the form of Lo & Shao 2002 that
+//         DualSPHysics uses; SPEC §8), in place of Pi_ij:
+//         + sum_j m_j 4 nu (r_ij.grad_i W_ij) v_ij / ((rho_i+rho_j)(r^2+0.01h^2))
+//         (against a wall or body particle v_j is the wall's velocity: moving walls drag)
+// With shifting (shifting.hpp) a fluid particle also sums grad C and div r over its pairs.
 // Wall and body particles sum over fluid neighbours only (dynamic boundary particles).
 // Each particle i writes only its own rates, so results do not depend on thread order.
 #pragma once
@@ -19,10 +24,14 @@
 #include "surge/sph/boundary/no_penetration.hpp"
 #include "surge/sph/eos_tait.hpp"
 #include "surge/sph/kernel_wendland_c2.hpp"
+#include "surge/sph/shifting.hpp"
 
 #include <type_traits>
 
 namespace surge::sph {
+
+// The momentum equation's viscous term (sph.viscosity).
+enum class Viscosity : std::uint8_t { Artificial, Laminar };
 
 struct WcsphParams {
   WendlandC2 kernel;
@@ -30,9 +39,12 @@ struct WcsphParams {
   Real mass = 1;           // rho0 dp^3, the same for every SPH particle
   Real dp = 1;             // particle spacing
   Real alpha = Real(0.01); // artificial viscosity
+  Real nu = Real(1e-6);    // kinematic viscosity [m^2/s] (laminar)
   Real delta = Real(0.1);  // density diffusion
   bool fourtakas = false;  // diffuse only the dynamic part of density (Fourtakas et al. 2019)
+  Viscosity viscosity = Viscosity::Artificial;
   Vec3 gravity{};
+  ShiftParams shift; // off unless sph.shifting
 };
 
 // A boundary (wall or body) particle's density never drops below rho0: a boundary
@@ -44,6 +56,13 @@ struct Rates {
   Real drho = 0;
   Real vsig = 0;
   WallChoice wall = no_wall; // fluid, with no penetration: the wall face or particle it would reach first
+  ShiftSums shift;           // with shifting
+};
+
+// Where a rates pass stores what a particle gives beyond the view's rates (null: not wanted).
+struct RatesOut {
+  WallChoice* faces = nullptr; // no penetration: each fluid particle's wall choice
+  ShiftSums* shift = nullptr;  // shifting: each particle's grad C and div r
 };
 
 // The formulas below are written once for T = Real (one pair at a time: the scalar and
@@ -51,11 +70,30 @@ struct Rates {
 // wcsph_rates_batched.inc); core/lanes.hpp says how.
 
 // The sums particle i accumulates over its pairs (each pair's term as in the header).
+// vsig is a maximum; the others are sums, listed once in for_each_sum.
 template <class T>
 struct PairSums {
   T drho{}, diff{}, vsig{};
   Vec3T<T> acc{};
+  Vec3T<T> grad_c{}; // shifting only
+  T div_r{};
 };
+
+// Calls f(a.x, b.x) for every summed member x of two PairSums (of any lane types), the
+// shifting sums last and only with `shifting`: the batched pass adds its lanes through it.
+template <class A, class B, class F>
+SURGE_HD SURGE_INLINE void for_each_sum(A& a, B& b, bool shifting, F&& f) {
+  f(a.drho, b.drho);
+  f(a.diff, b.diff);
+  f(a.acc.x, b.acc.x);
+  f(a.acc.y, b.acc.y);
+  f(a.acc.z, b.acc.z);
+  if (!shifting) return;
+  f(a.grad_c.x, b.grad_c.x);
+  f(a.grad_c.y, b.grad_c.y);
+  f(a.grad_c.z, b.grad_c.z);
+  f(a.div_r, b.div_r);
+}
 
 // What the pair terms read of one particle of a pair.
 template <class T>
@@ -111,9 +149,14 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
     s.diff += diffuse ? diffusion_term(prm, rij, grad, a.rho, b.rho, inv_rho_sum, inv_r2e) : T{};
   }
   T coef = (a.press + b.press) / (a.rho * b.rho);
-  const T visc = prm.alpha * prm.eos.c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
-  coef = vr < 0 ? coef - visc : coef;
+  if (prm.viscosity == Viscosity::Artificial) {
+    const T visc = prm.alpha * prm.eos.c0 * mu * 2 * inv_rho_sum; // rho_mean = (rho_i + rho_j) / 2
+    coef = vr < 0 ? coef - visc : coef;
+  }
   s.acc -= grad * (prm.mass * coef);
+  if (prm.viscosity == Viscosity::Laminar)
+    s.acc += vij * (prm.mass * 4 * prm.nu * dot(rij, grad) * inv_rho_sum * inv_r2e);
+  if (prm.shift.on()) add_shift_terms(prm.shift, rij, grad, prm.mass / b.rho, prm.kernel.w(r), s.grad_c, s.div_r);
 }
 
 // The rates of particle i from its sums.
@@ -124,15 +167,17 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   out.acc = fluid_i ? s.acc + prm.gravity : s.acc;
   out.vsig = s.vsig;
   out.wall = wall;
+  out.shift = {s.grad_c, s.div_r};
   return out;
 }
 
-// Writes particle i's rates (and, with the no-penetration condition, its wall's choice).
-SURGE_HD inline void store_rates(const particles::ParticleView& p, WallChoice* faces, int i, const Rates& r) {
+// Writes particle i's rates (and what `out` asks for: its wall's choice, its shifting sums).
+SURGE_HD inline void store_rates(const particles::ParticleView& p, const RatesOut& out, int i, const Rates& r) {
   p.acc[i] = r.acc;
   p.drho[i] = r.drho;
   p.vsig[i] = r.vsig;
-  if (faces) faces[i] = r.wall;
+  if (out.faces) out.faces[i] = r.wall;
+  if (out.shift) out.shift[i] = r.shift;
 }
 
 // Offers the faces and the sphere of wall particle j (at x_i - rij, |rij| = r) to the

@@ -11,7 +11,7 @@ namespace surge::sph {
 
 // Computes and stores (store_rates) the rates of particles [begin, end).
 using RatesFn = void (*)(const WcsphParams&, const neighbour::GridView&, const particles::ParticleView&,
-                         const WallHoldView&, WallChoice* faces, int begin, int end);
+                         const WallHoldView&, const RatesOut& out, int begin, int end);
 // The blocks of particles the solver hands to one call.
 constexpr int rates_block = 16;
 // Calls f(begin, end) for the blocks of rates_block consecutive particles of [0, n), as the

@@ -15,21 +15,22 @@ namespace detail {
 // live in private member functions.
 
 // EOS then per-particle rates (continuity, momentum, signal speed); with the no-penetration
-// condition (`faces` not null) which wall plane each fluid particle would reach first. On
-// CPUs the batched pair loop (wcsph_rates_simd.hpp) unless built or asked without it.
+// condition (out.faces not null) which wall plane each fluid particle would reach first, with
+// shifting (out.shift) its sums. On CPUs the batched pair loop (wcsph_rates_simd.hpp) unless
+// built or asked without it.
 void compute_rates(const WcsphParams& prm, const WallHoldView& gh, const neighbour::GridView& g,
-                   const particles::ParticleView& p, WallChoice* faces) {
+                   const particles::ParticleView& p, const RatesOut& out) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) { p.press[i] = prm.eos.pressure(p.rho[i]); });
 #if defined(SURGE_SIMD)
   if (const RatesFn batched = batched_rates()) {
     // Blocks of consecutive particles (one cell's share its candidates in the AVX2 copy).
-    for_each_rates_block(p.n, [=](int begin, int end) { batched(prm, g, p, gh, faces, begin, end); });
+    for_each_rates_block(p.n, [=](int begin, int end) { batched(prm, g, p, gh, out, begin, end); });
     return;
   }
 #endif
   par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) { store_rates(p, faces, i, wcsph_rates(prm, g, p, i, gh)); });
+      p.n, SURGE_LAMBDA(int i) { store_rates(p, out, i, wcsph_rates(prm, g, p, i, gh)); });
 }
 
 // min over owned fluid of min(sqrt(h/|a|), h/(c0 + vsig)) (SPEC §2.5), without the CFL
@@ -76,12 +77,31 @@ long long flag_removals(const particles::ParticleView& p, Vec3 lo, Vec3 hi, Real
       par::Sum{});
 }
 
+// What the updates read beyond the rates: the wall choices (no penetration) and the
+// shifting sums (each null when off), and the parameters that go with them.
+struct UpdateExtras {
+  WallHoldView gh;
+  const WallChoice* faces = nullptr;
+  Real dmin = 0; // keep_off_distance
+  const ShiftSums* shift = nullptr;
+  ShiftParams shifting;
+  Real h = 0;
+};
+
+// Where fluid particle i goes: x, moved by dt at velocity u by the integrator, shifted
+// (shifting.hpp) and then kept dmin in front of the wall face it would reach first
+// (no_penetration.hpp; the plane rebuilt where the rates saw it, from x_rates, and moved
+// to where it will be at the step's end). v (and v_prev) lose their motion into that plane.
+SURGE_HD inline void finish_move(const UpdateExtras& e, const particles::ParticleView& p, int i, const Vec3& x_rates,
+                                 const Vec3& u, Real dt, Vec3& x, Vec3& v, Vec3* v_prev = nullptr) {
+  if (e.shift) x += shift_displacement(e.shifting, e.shift[i], u, e.h, dt);
+  if (e.faces) keep_off_face(held_plane(e.gh, p, e.faces[i], x_rates, e.dmin).after(dt), e.dmin, x, v, v_prev);
+}
+
 // Verlet (Monaghan 1989): v+ = v- + 2 dt a, r+ = r + dt v + dt^2/2 a, rho+ = rho- + 2 dt drho;
-// an Euler step when `euler`. Boundary densities are clamped at rho0. With `faces` (no
-// penetration: the rates pass's wall choices) fluid is kept `dmin` in front of the wall
-// face it would reach first (no_penetration.hpp), the plane rebuilt where the rates saw it.
-void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const WallHoldView& gh,
-                   const WallChoice* faces, Real dmin) {
+// an Euler step when `euler`. Boundary densities are clamped at rho0. Fluid is then shifted
+// and held off the walls (finish_move).
+void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool euler, const UpdateExtras& e) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
@@ -95,7 +115,7 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
           Vec3 x = x_now + (v_now * dt + a * (dt * dt / 2)); // the association of the plain update
           Vec3 v = euler ? v_now + a * dt : p.vel_prev[i] + a * (2 * dt);
           Vec3 v_prev = v_now;
-          if (faces) keep_off_face(held_plane(gh, p, faces[i], x_now, dmin).after(dt), dmin, x, v, &v_prev);
+          finish_move(e, p, i, x_now, v_now, dt, x, v, &v_prev);
           p.pos[i] = x;
           p.vel[i] = v;
           p.vel_prev[i] = v_prev;
@@ -108,8 +128,7 @@ void verlet_update(const particles::ParticleView& p, Real dt, Real rho0, bool eu
 }
 
 // Symplectic position-Verlet, first half: state n saved in *_prev, advanced by dt/2.
-void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, const WallHoldView& gh,
-                        const WallChoice* faces, Real dmin) {
+void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, const UpdateExtras& e) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -120,13 +139,13 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
           // A state the last corrector left past the plane is put back first: the corrector
           // starts from it again.
           Vec3 x0 = p.pos[i], v0 = p.vel[i];
-          const WallPlane face = faces ? held_plane(gh, p, faces[i], x0, dmin) : WallPlane{};
-          if (faces) keep_off_face(face, dmin, x0, v0);
+          const WallPlane face = e.faces ? held_plane(e.gh, p, e.faces[i], x0, e.dmin) : WallPlane{};
+          if (e.faces) keep_off_face(face, e.dmin, x0, v0);
           p.pos_prev[i] = x0;
           p.vel_prev[i] = v0;
           Vec3 x = x0 + v0 * half;
           Vec3 v = v0 + p.acc[i] * half;
-          if (faces) keep_off_face(face.after(half), dmin, x, v);
+          if (e.faces) keep_off_face(face.after(half), e.dmin, x, v);
           p.pos[i] = x;
           p.vel[i] = v;
         } else {
@@ -136,9 +155,9 @@ void symplectic_predict(const particles::ParticleView& p, Real dt, Real rho0, co
       });
 }
 
-// Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2.
-void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, const WallHoldView& gh,
-                        const WallChoice* faces, Real dmin) {
+// Second half, with the rates at n + 1/2: v+ = v + dt a, r+ = r + dt (v + v+)/2; then
+// shifted (with the sums and the velocity at n + 1/2) and held off the walls.
+void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, const UpdateExtras& e) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   const Real half = dt / 2;
   par::parallel_for(
@@ -149,7 +168,7 @@ void symplectic_correct(const particles::ParticleView& p, Real dt, Real rho0, co
           Vec3 v1 = v0 + p.acc[i] * dt;
           Vec3 x = p.pos_prev[i] + (v0 + v1) * half;
           // The rates were at pos (walls where they stood at the step's start).
-          if (faces) keep_off_face(held_plane(gh, p, faces[i], p.pos[i], dmin).after(dt), dmin, x, v1);
+          finish_move(e, p, i, p.pos[i], p.vel[i], dt, x, v1);
           p.vel[i] = v1;
           p.pos[i] = x;
         } else {
@@ -311,9 +330,14 @@ void WcsphSolver::rates() {
     boundary_->prepare(cfg_.prm, g, p);
     images_.refresh(p); // ... and their wall densities (those of the images' own ghosts are not whole)
   }
-  WallChoice* choices = hold_.choices(p.n);
+  RatesOut out;
+  out.faces = hold_.choices(p.n);
+  if (cfg_.prm.shift.on()) {
+    shift_.resize(static_cast<std::size_t>(p.n));
+    out.shift = shift_.data();
+  }
   const auto t = par::timed(par::Phase::Rates);
-  detail::compute_rates(cfg_.prm, hold_.view(), g, p, choices);
+  detail::compute_rates(cfg_.prm, hold_.view(), g, p, out);
 }
 
 void WcsphSolver::move_walls(const std::vector<RigidState>& states) {
@@ -367,20 +391,24 @@ StepStats WcsphSolver::step(double dt_max) {
   const bool symplectic = cfg_.integrator == Integrator::Symplectic;
   if (symplectic) store_.reserve_position_scratch();
   const auto p = store_.view();
-  const WallChoice* faces = hold_.choices();
-  const WallHoldView gh = hold_.view();
-  const Real dmin = keep_off_distance(cfg_.prm.dp);
+  detail::UpdateExtras e;
+  e.gh = hold_.view();
+  e.faces = hold_.choices();
+  e.dmin = keep_off_distance(cfg_.prm.dp);
+  e.shift = cfg_.prm.shift.on() ? shift_.data() : nullptr;
+  e.shifting = cfg_.prm.shift;
+  e.h = cfg_.prm.kernel.h;
   if (!symplectic) {
     const auto t = par::timed(par::Phase::Integrate);
-    detail::verlet_update(p, dt, rho0, steps_ % cfg_.euler_every == 0, gh, faces, dmin);
+    detail::verlet_update(p, dt, rho0, steps_ % cfg_.euler_every == 0, e);
   } else {
     {
       const auto t = par::timed(par::Phase::Integrate);
-      detail::symplectic_predict(p, dt, rho0, gh, faces, dmin);
+      detail::symplectic_predict(p, dt, rho0, e);
     }
     rates();
     const auto t = par::timed(par::Phase::Integrate);
-    detail::symplectic_correct(p, dt, rho0, gh, faces, dmin);
+    detail::symplectic_correct(p, dt, rho0, e);
   }
   if (cfg_.damping.n > 0) {
     const auto t = par::timed(par::Phase::Integrate);

@@ -64,7 +64,8 @@ public:
   [[nodiscard]] int size() const { return store_.size(); }
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
-    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes() + images_.bytes();
+    return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes() + images_.bytes() +
+           shift_.size() * sizeof(ShiftSums);
   }
   [[nodiscard]] neighbour::GridView grid_view() {
     const particles::ParticleView v = store_.view();
@@ -109,6 +110,7 @@ private:
   WallHold hold_;                           // sph.no_penetration
   MovingWalls moving_;                      // walls with a motion
   domain::Images images_;                   // domain.periodic and domain.symmetry
+  par::Buffer<ShiftSums> shift_;            // sph.shifting: each particle's sums from the last rates
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;

@@ -1,0 +1,235 @@
+#!/usr/bin/env python3
+"""Water against theory (issue 35): each part starts from a state written particle by
+particle (fluid[].particles) and compares a run with a closed form.
+
+1. Standing wave: the first sloshing mode of a closed tank 0.3 m long, 0.15 m deep
+   (30 dp at dp = 5 mm), a slab periodic across, the surface displaced by
+   a cos(k x), a = 0.04 depth, at rest. The period from the gauges' zero crossings within
+   1 % of omega^2 = g k tanh(k h); the amplitude's decay per period measured for each
+   viscosity and shifting setting, and at most 2 % with laminar viscosity and shifting.
+2. Taylor-Green vortex at Re = 100: u = U sin(2 pi x/L) cos(2 pi y/L), v = -U cos sin,
+   periodic in x, y and a thin z; no walls, no gravity. The velocity amplitude (from the
+   frames: the particles' velocities projected on the initial field) decays as
+   exp(-8 pi^2 nu t / L^2) within 5 % over one decay time with laminar viscosity and
+   shifting; without shifting, and with artificial viscosity, the figures are printed.
+3. Still water with shifting on: pressure within 1 % of rho g d after 2 s, the surface
+   where it started (within dp/4), nothing removed.
+
+Usage: test_waves.py SURGE WORK [--quick] [--part standing|taylor_green|hydrostatic]
+--quick runs the laminar + shifting standing wave and the Taylor-Green vortex only."""
+import math
+import os
+import shutil
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import Checks  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import surge_post  # noqa: E402
+
+SURGE, WORK = sys.argv[1], sys.argv[2]
+QUICK = "--quick" in sys.argv
+PART = sys.argv[sys.argv.index("--part") + 1] if "--part" in sys.argv else None
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+checks = Checks(SURGE, WORK)
+check = checks.check
+G, RHO0, GAMMA = 9.81, 1000.0, 7.0
+
+
+def tait_density(p, c0):
+    """The density at pressure p (the EOS of SPEC 2.2, B = c0^2 rho0 / gamma)."""
+    b = c0 * c0 * RHO0 / GAMMA
+    return RHO0 * (1 + p / b) ** (1 / GAMMA)
+
+
+def write_table(name, pos, vel, rho):
+    path = os.path.join(WORK, name + ".csv")
+    np.savetxt(path, np.column_stack([pos, vel, rho]), fmt="%.9g", delimiter=",", header="x,y,z,vx,vy,vz,rho",
+               comments="")
+    return path
+
+
+# ---------------------------------------------------------------- 1. standing wave
+DP, DEPTH, LENGTH, WIDTH = 0.005, 0.15, 0.3, 0.025
+AMP = 0.04 * DEPTH
+K = math.pi / LENGTH
+OMEGA = math.sqrt(G * K * math.tanh(K * DEPTH))
+PERIOD = 2 * math.pi / OMEGA
+C0 = 20 * math.sqrt(G * DEPTH)
+
+
+def standing_state():
+    """Columns of 30 particles stretched to the surface h + a cos(k x), hydrostatic below it."""
+    nx, ny, nz = round(LENGTH / DP), round(WIDTH / DP), round(DEPTH / DP)
+    pos = []
+    for i in range(nx):
+        x = (i + 0.5) * DP
+        top = DEPTH + AMP * math.cos(K * x)
+        for j in range(ny):
+            for k in range(nz):
+                pos.append((x, (j + 0.5) * DP, (k + 0.5) * top / nz))
+    pos = np.array(pos)
+    top = DEPTH + AMP * np.cos(K * pos[:, 0])
+    rho = tait_density(RHO0 * G * (top - pos[:, 2]), C0)
+    return pos, np.zeros_like(pos), rho
+
+
+def standing_case(name, table, sph, periods):
+    return f"""name: {name}
+dp: {DP}
+time: {{end: {periods * PERIOD:.4f}, output_every: {PERIOD:.4f}, gauge_every: 0.004}}
+gravity: [0, 0, -9.81]
+domain: {{min: [0, 0, 0], max: [{LENGTH}, {WIDTH}, 0.25], periodic: [ymin, ymax]}}
+sph: {{c0: {C0:.6f}, boundary: mdbc, integrator: symplectic, {sph}}}
+fluid: [{{particles: {table}}}]
+walls: [{{name: tank, box: {{min: [0, 0, 0], max: [{LENGTH}, {WIDTH}, 0.25]}}, open: [ymin, ymax, zmax]}}]
+gauges:
+  - {{name: left, type: height, x: 0.01, y: {WIDTH / 2}}}
+  - {{name: right, type: height, x: {LENGTH - 0.01}, y: {WIDTH / 2}}}
+"""
+
+
+def crossings(t, eta):
+    """Times where eta crosses its mean, linearly interpolated."""
+    e = eta - eta.mean()
+    k = np.nonzero(np.sign(e[:-1]) * np.sign(e[1:]) < 0)[0]
+    return t[k] - e[k] * (t[k + 1] - t[k]) / (e[k + 1] - e[k])
+
+
+def standing_wave(label, sph, periods, limit_decay):
+    table = write_table("standing", *standing_state())
+    out = checks.run("standing_" + label, standing_case("standing_" + label, table, sph, periods))
+    g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
+    s = surge_post.read_summary(os.path.join(out, "summary.json"))
+    check(s["removed"]["total"] == 0, f"{label}: no water removed ({s['removed']})")
+    t = g["time"]
+    # left - right: the mode's antisymmetric part, twice the amplitude at each gauge
+    eta = (g["left"] - g["right"]) / 2
+    z = crossings(t, eta)
+    period = 2 * np.mean(np.diff(z))
+    err = period / PERIOD - 1
+    # the amplitude of each half period: the extreme between two crossings
+    peaks = [np.abs(eta[(t > a) & (t < b)] - eta.mean()).max() for a, b in zip(z[:-1], z[1:])]
+    peaks = np.array(peaks)
+    # decay per period from a fit of log(peak) over the half periods
+    slope = np.polyfit(np.arange(len(peaks)), np.log(peaks), 1)[0] if len(peaks) > 2 else float("nan")
+    decay = 1 - math.exp(2 * slope)
+    a0 = AMP * math.cos(K * 0.01)
+    print(f"  {label}: period {period:.4f} s against {PERIOD:.4f} s ({100 * err:+.2f} %), first amplitude "
+          f"{peaks[0] * 1000:.2f} mm of {a0 * 1000:.2f} mm, decay {100 * decay:.2f} % per period over "
+          f"{len(peaks) / 2:.1f} periods", flush=True)
+    check(abs(err) < 0.01, f"{label}: period within 1 % of linear theory ({100 * err:+.2f} %)")
+    if limit_decay is not None:
+        check(decay <= limit_decay, f"{label}: amplitude decays {100 * decay:.2f} % per period (at most "
+                                    f"{100 * limit_decay:.0f} %)")
+    return period, decay
+
+
+# ---------------------------------------------------------------- 2. Taylor-Green vortex
+TG_L, TG_U, TG_RE, TG_DP = 1.0, 1.0, 100.0, 0.02
+TG_NU = TG_U * TG_L / TG_RE
+TG_C0 = 10 * TG_U
+TG_THICK = 6 * TG_DP
+TG_TIME = TG_L * TG_L / (8 * math.pi ** 2 * TG_NU)  # one decay time of the amplitude
+
+
+def tg_field(pos):
+    k = 2 * math.pi / TG_L
+    x, y = pos[:, 0], pos[:, 1]
+    u = np.column_stack([TG_U * np.sin(k * x) * np.cos(k * y), -TG_U * np.cos(k * x) * np.sin(k * y),
+                         np.zeros(len(pos))])
+    p = RHO0 * TG_U ** 2 / 4 * (np.cos(2 * k * x) + np.cos(2 * k * y))
+    return u, p
+
+
+def tg_state():
+    n, nz = round(TG_L / TG_DP), round(TG_THICK / TG_DP)
+    g = (np.arange(n) + 0.5) * TG_DP
+    gz = (np.arange(nz) + 0.5) * TG_DP
+    x, y, z = np.meshgrid(g, g, gz, indexing="ij")
+    pos = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+    u, p = tg_field(pos)
+    return pos, u, tait_density(p, TG_C0)
+
+
+def taylor_green(label, sph, limit):
+    table = write_table("taylor_green", *tg_state())
+    text = f"""name: tg_{label}
+dp: {TG_DP}
+time: {{end: {TG_TIME:.4f}, output_every: {TG_TIME / 8:.5f}}}
+gravity: [0, 0, 0]
+domain: {{min: [0, 0, 0], max: [{TG_L}, {TG_L}, {TG_THICK}], periodic: [xmin, xmax, ymin, ymax, zmin, zmax]}}
+sph: {{c0: {TG_C0}, nu: {TG_NU}, integrator: symplectic, hydrostatic_init: false, {sph}}}
+fluid: [{{particles: {table}}}]
+"""
+    out = checks.run("tg_" + label, text)
+    frames = surge_post.read_pvd(os.path.join(out, "fluid.pvd"))
+    worst, rows = 0.0, []
+    for t, f in frames:
+        d = surge_post.read_vtp(os.path.join(out, f))
+        u0, _ = tg_field(d["position"].astype(np.float64))
+        amp = np.sum(d["velocity"][:, :2] * u0[:, :2]) / np.sum(u0[:, :2] ** 2) * TG_U  # projection on the mode
+        want = TG_U * math.exp(-8 * math.pi ** 2 * TG_NU * t / TG_L ** 2)
+        worst = max(worst, abs(amp / want - 1))
+        rows.append((t, amp, want))
+    s = surge_post.read_summary(os.path.join(out, "summary.json"))
+    print(f"  {label}: amplitude at t/T = 0.5, 1: " +
+          ", ".join(f"{a:.4f} (theory {w:.4f})" for t, a, w in rows if abs(t / TG_TIME - 0.5) < 0.01 or
+                    abs(t / TG_TIME - 1) < 0.01) + f"; largest deviation {100 * worst:.2f} %", flush=True)
+    check(s["removed"]["total"] == 0, f"tg {label}: no water removed ({s['removed']})")
+    if limit is not None:
+        check(worst < limit, f"tg {label}: amplitude within {100 * limit:.0f} % of exp(-8 pi^2 nu t / L^2) over one "
+                             f"decay time ({100 * worst:.2f} %)")
+    return worst
+
+
+# ---------------------------------------------------------------- 3. still water, shifting on
+HYDRO = """name: hydro_shift
+dp: 0.01
+time: {end: 2.0, output_every: 0.5, gauge_every: 0.01}
+gravity: [0, 0, -9.81]
+domain: {min: [0, 0, 0], max: [0.3, 0.06, 0.3], periodic: [ymin, ymax]}
+sph: {boundary: mdbc, integrator: symplectic, viscosity: laminar, shifting: fickian}
+fluid: [{box: {min: [0, 0, 0], max: [0.3, 0.06, 0.2]}}]
+walls: [{name: tank, box: {min: [0, 0, 0], max: [0.3, 0.06, 0.3]}, open: [ymin, ymax, zmax]}]
+gauges:
+  - {name: p_mid, type: pressure, at: [0.15, 0.03, 0.1]}
+  - {name: p_deep, type: pressure, at: [0.05, 0.03, 0.05]}
+  - {name: H, type: height, x: 0.15, y: 0.03}
+"""
+
+
+def hydrostatic():
+    out = checks.run("hydro_shift", HYDRO)
+    g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
+    late = g["time"] >= 1.8 - 1e-9
+    for name, depth in (("p_mid", 0.1), ("p_deep", 0.15)):
+        p, want = g[name][late].mean(), RHO0 * G * depth
+        check(abs(p / want - 1) < 0.01, f"shifting: {name} {p:.1f} Pa within 1 % of rho g d = {want:.1f} Pa "
+                                        f"({100 * (p / want - 1):+.2f} %)")
+    drift = g["H"][late].mean() - g["H"][g["time"] < 0.1].mean()
+    check(abs(drift) < 0.0025, f"shifting: the surface moved {1000 * drift:+.2f} mm from 0 to 2 s (within dp/4)")
+    s = surge_post.read_summary(os.path.join(out, "summary.json"))
+    check(s["removed"]["total"] == 0, f"shifting: no water removed ({s['removed']})")
+
+
+if PART in (None, "standing"):
+    print("1. standing wave: linear theory period %.4f s" % PERIOD, flush=True)
+    standing_wave("laminar_shifting", "viscosity: laminar, shifting: fickian", 3, 0.02)
+    if not QUICK:
+        standing_wave("laminar", "viscosity: laminar", 3, None)
+        standing_wave("artificial", "viscosity: artificial", 3, None)
+        standing_wave("artificial_shifting", "viscosity: artificial, shifting: fickian", 3, None)
+if PART in (None, "taylor_green"):
+    print("2. Taylor-Green vortex, Re = %g: decay time %.3f s" % (TG_RE, TG_TIME), flush=True)
+    taylor_green("laminar_shifting", "viscosity: laminar, shifting: fickian", 0.05)
+    if not QUICK:
+        taylor_green("laminar", "viscosity: laminar", None)
+if PART in (None, "hydrostatic") and not QUICK:
+    print("3. still water with shifting", flush=True)
+    hydrostatic()
+checks.finish("wave theory")
