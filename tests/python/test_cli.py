@@ -77,6 +77,9 @@ bad_cases = {
     "negative_nu": (GOOD.replace("fluid:", "sph: {viscosity: laminar, nu: -1.0e-6}\nfluid:"), "'sph.nu'"),
     "particles_and_box": (GOOD.replace("  - box: {min", "  - particles: water.csv\n    box: {min"),
                           "exactly one of 'box', 'reservoir' or 'particles'"),
+    "fill_reservoir": (GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}",
+                                    "  - {reservoir: {level: 0.1, seed: [0.05, 0.05]}, fill: lattice}"),
+                       "'fluid.0.fill'"),
     "missing_particles": (GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}", "  - particles: none.csv"),
                           "'fluid.0.particles'"),
 }
@@ -112,10 +115,15 @@ check(r.returncode == 2 and "--set" in r.stderr, "--set typo is rejected and att
 r = run(["check", os.path.join(WORK, "good.yaml")])
 check(r.returncode == 0 and "fluid" in r.stdout and "first dt" in r.stdout and "run time" in r.stdout, "check prints counts, dt, run time")
 check("0.002 m^3 placed of 0.002 m^3" in r.stdout and "100.0 %" in r.stdout, "check reports the water placed (whole spacings)")
-# A box 0.11 m wide at dp = 0.02 holds 5 layers (0.1 m): 90.9 % of the water, said and warned.
+# A box 0.11 m wide at dp = 0.02 holds its own volume (6 layers of 0.0183 m, the mass from it) ...
 r = run(["check", os.path.join(WORK, "good.yaml"), "--set", "fluid.0.box.max=[0.11,0.1,0.2]"])
+check(r.returncode == 0 and "0.0022 m^3 placed of 0.0022 m^3" in r.stdout and "100.0 %" in r.stdout
+      and "not whole numbers of dp" not in r.stdout, "check reports the exact fill of a box of 5.5 dp")
+# ... and with fill: lattice 5 layers (0.1 m): 90.9 % of the water, said and warned.
+r = run(["check", os.path.join(WORK, "good.yaml"), "--set", "fluid.0.box.max=[0.11,0.1,0.2]", "--set",
+         "fluid.0.fill=lattice"])
 check(r.returncode == 0 and "0.002 m^3 placed of 0.0022 m^3" in r.stdout and "90.9 %" in r.stdout
-      and "not whole numbers of dp" in r.stdout, "check reports and warns about water short of its box")
+      and "not whole numbers of dp" in r.stdout, "check reports and warns about water short of its box (fill: lattice)")
 
 # --- a good run
 out = os.path.join(WORK, "out_good")

@@ -209,7 +209,7 @@ TEST(CaseSchema, EveryRangeAndChoiceIsCheckedWithTheKeyNamed) {
 // with the closest declared one, in a list item as in a section.
 TEST(CaseSchema, AllowedKeysComeFromTheSchema) {
   EXPECT_EQ(io::keys_under("coupling"), (std::vector<std::string>{"body_layers", "force_sum"}));
-  EXPECT_EQ(io::keys_under("fluid[]"), (std::vector<std::string>{"box", "reservoir", "velocity"}));
+  EXPECT_EQ(io::keys_under("fluid[]"), (std::vector<std::string>{"box", "reservoir", "particles", "velocity", "fill"}));
   expect_error(test::tank_case(0.01) + "coupling: {force_summ: exact}\n", 7, "coupling.force_summ",
                "did you mean 'force_sum'");
   expect_error(test::tank_case(0.01), 0, "fluid.0.velocty", "did you mean 'velocity'", {"fluid.0.velocty=[1,0,0]"});
@@ -228,7 +228,7 @@ TEST(CaseReader, ReservoirAndHazardInputErrors) {
   expect_error(head + "fluid: [{reservoir: {level: 0.1, seed: [0.1]}}]\n", 4, "fluid.0.reservoir.seed",
                "expected [x, y]");
   expect_error(head + "fluid: [{box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}, reservoir: {level: 0.1, seed: [0, 0]}}]\n",
-               4, "fluid.0", "exactly one of 'box' or 'reservoir'");
+               4, "fluid.0", "exactly one of 'box', 'reservoir' or 'particles'");
   expect_error(test::tank_case(0.01) + "hazard: {coarsen: 2}\n", 7, "hazard", "needs a wall with 'terrain'");
   expect_error(head + "walls: [{box: {min: [0, 0, 0], max: [0.2, 0.1, 0.3]}, terrain: ground.tif}]\n", 4, "walls.0",
                "exactly one of 'box', 'mesh' (an STL file) or 'terrain'");

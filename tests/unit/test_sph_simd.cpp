@@ -137,7 +137,8 @@ TEST(SphSimd, LaminarViscosityAndShiftingMatchScalar) {
   ASSERT_TRUE(s.params().shift.on());
   compare_rates(s, "laminar + shifting");
   auto m = advanced(
-      test::tank_case(0.01, 0.0, "sph: {boundary: mdbc, viscosity: laminar, shifting: delta_plus, integrator: symplectic}\n"),
+      test::tank_case(0.01, 0.0,
+                      "sph: {boundary: mdbc, viscosity: laminar, shifting: delta_plus, integrator: symplectic}\n"),
       40);
   compare_rates(m, "mdbc + laminar + delta_plus shifting");
 }

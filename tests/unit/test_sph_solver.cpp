@@ -210,11 +210,11 @@ TEST(WcsphSolver, FourtakasDiffusionLeavesHydrostaticColumnAlone) {
 // instead of 6 mm on one; a mirrored copy of the box gets the mirrored lattice.
 TEST(InitialState, FluidLatticeIsCentredInItsBox) {
   auto extent = [](double x0, double x1) {
-    const Case c =
-        io::read_case_text("name: col\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.6,0.1,0.4]}\n"
-                           "fluid: [{box: {min: [" +
-                               std::to_string(x0) + ",0,0], max: [" + std::to_string(x1) + ",0.1,0.292]}}]\n",
-                           "col.yaml");
+    const Case c = io::read_case_text("name: col\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.6,0.1,0.4]}\n"
+                                      "fluid: [{box: {min: [" +
+                                          std::to_string(x0) + ",0,0], max: [" + std::to_string(x1) +
+                                          ",0.1,0.292]}, fill: lattice}]\n",
+                                      "col.yaml");
     const auto init = sph::build_initial_state(c);
     double lo = 1e9, hi = -1e9, zlo = 1e9, zhi = -1e9;
     for (const auto& p : init.particles.pos) {
@@ -234,4 +234,34 @@ TEST(InitialState, FluidLatticeIsCentredInItsBox) {
   const auto [left_m, right_m] = extent(0.6 - 0.146, 0.6);
   EXPECT_NEAR(left_m, right, 1e-6);
   EXPECT_NEAR(right_m, left, 1e-6);
+}
+
+// fill: exact (the default): round(L/dp) points per axis on a spacing stretched to L/n,
+// the first and last s/2 from the faces, and the particle mass from the volume placed:
+// the box of 14.6 x 10 x 29.2 spacings holds 15 x 10 x 29 particles standing for its own
+// volume exactly.
+TEST(InitialState, ExactFillHoldsTheBoxVolume) {
+  const Case c = io::read_case_text("name: col\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.6,0.1,0.4]}\n"
+                                    "fluid: [{box: {min: [0,0,0], max: [0.146,0.1,0.292]}}]\n",
+                                    "col.yaml");
+  const auto init = sph::build_initial_state(c);
+  ASSERT_EQ(init.n_fluid, 15U * 10U * 29U);
+  const double volume = 0.146 * 0.1 * 0.292;
+  EXPECT_NEAR(init.fluid_volume_placed, volume, 1e-12);
+  EXPECT_NEAR(init.particle_mass, 1000 * volume / (15 * 10 * 29), 1e-12);
+  double lo = 1e9, hi = -1e9, zlo = 1e9, zhi = -1e9;
+  for (const auto& p : init.particles.pos) {
+    lo = std::min(lo, static_cast<double>(p.x));
+    hi = std::max(hi, static_cast<double>(p.x));
+    zlo = std::min(zlo, static_cast<double>(p.z));
+    zhi = std::max(zhi, static_cast<double>(p.z));
+  }
+  const double sx = 0.146 / 15, sz = 0.292 / 29;
+  EXPECT_NEAR(lo, sx / 2, 1e-6);
+  EXPECT_NEAR(hi, 0.146 - sx / 2, 1e-6);
+  EXPECT_NEAR(zlo, sz / 2, 1e-6);
+  EXPECT_NEAR(zhi, 0.292 - sz / 2, 1e-6);
+  // The solver takes that mass (the water at rest then fills the box's volume).
+  const sph::WcsphSolver s(sph::solver_config(c), init);
+  EXPECT_FLOAT_EQ(s.params().mass, static_cast<float>(init.particle_mass));
 }

@@ -63,6 +63,9 @@ struct FluidRegion {
   // the domain below its level (what the hydrostatic start and the sound speed read).
   Box box;
   Vec3d velocity{};
+  // A box's filling: exact (round(L / dp) points per axis, the spacing stretched to fill
+  // it, the particle mass from the volume placed) or lattice (whole spacings, centred).
+  std::string fill = "exact";
   bool reservoir = false;
   double level = 0;              // the still water surface [m]
   double seed_x = 0, seed_y = 0; // a point of the water's surface, in the reservoir

@@ -20,15 +20,15 @@ struct NumberRow {
   int line = 0;
 };
 inline std::vector<NumberRow> read_number_rows(const std::string& path, std::size_t least, std::size_t most,
-                                        const std::string& columns, const std::string& what) {
+                                               const std::string& columns, const std::string& what) {
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "", "cannot open the " + what);
   std::vector<NumberRow> out;
   std::string line;
   int lineno = 0;
-  const std::string expected = least == most ? "expected " + std::to_string(least) + " numbers: " + columns
-                                             : "expected " + std::to_string(least) + " to " + std::to_string(most) +
-                                                   " numbers: " + columns;
+  const std::string expected =
+      least == most ? "expected " + std::to_string(least) + " numbers: " + columns
+                    : "expected " + std::to_string(least) + " to " + std::to_string(most) + " numbers: " + columns;
   while (std::getline(in, line)) {
     ++lineno;
     if (const auto h = line.find('#'); h != std::string::npos) line.resize(h);
@@ -57,6 +57,5 @@ inline std::vector<NumberRow> read_number_rows(const std::string& path, std::siz
   if (out.empty()) throw InputError(path, 0, "", "the " + what + " is empty");
   return out;
 }
-
 
 } // namespace surge

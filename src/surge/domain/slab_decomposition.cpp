@@ -16,7 +16,7 @@ namespace {
 
 // One particle as it travels between processes: every state field (particles/
 // particle_fields.hpp: what a step needs; rates are recomputed after every exchange), its
-// bytes in the list's order, 61 bytes.
+// bytes in the list's order, 62 bytes.
 std::size_t record_size() {
   std::size_t size = 0;
   particles::HostParticles h;

@@ -141,9 +141,16 @@ double signed_distance(const Mesh& m, const Vec3d& p, Vec3d* at = nullptr, doubl
 }
 } // namespace
 
-std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred) {
+double stretched_cell_volume(const Box& b, double dp) {
+  double v = 1;
+  for (int k = 0; k < 3; ++k) v *= stretched_spacing(b.min[k], b.max[k], dp);
+  return v;
+}
+
+std::vector<Vec3d> fill_box(const Box& b, double dp, BoxFill fill) {
   std::vector<Vec3d> pts;
-  const auto axis = centred ? lattice_centred : lattice;
+  const auto axis =
+      fill == BoxFill::Stretched ? lattice_stretched : (fill == BoxFill::Centred ? lattice_centred : lattice);
   const auto xs = axis(b.min.x, b.max.x, dp), ys = axis(b.min.y, b.max.y, dp), zs = axis(b.min.z, b.max.z, dp);
   pts.reserve(xs.size() * ys.size() * zs.size());
   for (double z : zs)

@@ -12,8 +12,13 @@ namespace surge::geometry {
 // Number of wall layers that fill the kernel support: ceil(2h/dp).
 int wall_layers(const Case& c);
 
-// Lattice points (i + 1/2) dp inside the box.
-std::vector<Vec3d> fill_box(const Box& b, double dp, bool centred = false);
+// How a box of water is filled: whole spacings dp from its corner (Lattice), the same
+// centred in the box (Centred: a box that is not a whole number of spacings keeps its
+// shortfall at both ends), or round(L / dp) points per axis with the spacing stretched to
+// L / n (Stretched: the box filled exactly, each point standing for stretched_cell_volume).
+enum class BoxFill { Lattice, Centred, Stretched };
+std::vector<Vec3d> fill_box(const Box& b, double dp, BoxFill fill = BoxFill::Lattice);
+double stretched_cell_volume(const Box& b, double dp);
 // Layers of thickness `layers` dp around a tank box (outside it, faces in `open` left out),
 // or inside it when `solid`: with `fit`, on a lattice stretched to fit the solid box (each
 // face half a spacing in front of its first layer, as mDBC's no-penetration condition

@@ -428,11 +428,13 @@ void read_given_particles(const Reader& r, const YAML::Node& n, const std::strin
 FluidRegion parse_fluid(const Reader& r, const YAML::Node& f, const std::string& path, const Case& c) {
   r.check_keys(f, path, keys_under("fluid[]"));
   FluidRegion reg;
-  if ((f["box"].IsDefined() ? 1 : 0) + (f["reservoir"].IsDefined() ? 1 : 0) + (f["particles"].IsDefined() ? 1 : 0) !=
-      1)
+  if ((f["box"].IsDefined() ? 1 : 0) + (f["reservoir"].IsDefined() ? 1 : 0) + (f["particles"].IsDefined() ? 1 : 0) != 1)
     r.fail(f, path, "a fluid region needs exactly one of 'box', 'reservoir' or 'particles'");
   read_fields(r, f, path, fluid_fields(), reg);
   reg.line = f.Mark().line + 1;
+  if (f["fill"].IsDefined() && !f["box"].IsDefined())
+    r.fail(f["fill"], path + ".fill",
+           "'fill' is a box's (a reservoir fills its lake on the lattice, a particle table is placed as given)");
   if (f["particles"].IsDefined()) {
     read_given_particles(r, f["particles"], path + ".particles", c, reg);
     return reg;

@@ -254,6 +254,14 @@ const std::vector<Field<DemMaterialSpec>>& material_fields() {
 const std::vector<Field<FluidRegion>>& fluid_fields() {
   static const std::vector<Field<FluidRegion>> f{
       {"velocity", &FluidRegion::velocity, "m/s", {}, {}, "its initial velocity"},
+      {"fill",
+       &FluidRegion::fill,
+       "",
+       {},
+       {"exact", "lattice"},
+       "a box: exact (round(L/dp) points per axis, the spacing stretched to fill it, and the particle mass from the "
+       "water placed: the box holds its own volume) or lattice (whole spacings, centred: up to a spacing short per "
+       "axis)"},
   };
   return f;
 }

@@ -97,8 +97,10 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
                          std::initializer_list<Kind> kinds) {
   std::vector<double> pos;
   std::vector<float> vel, rho, press;
-  std::vector<std::uint8_t> kind;
+  std::vector<std::uint8_t> kind, surface;
   std::vector<std::uint32_t> id;
+  bool marked = h.surface.size() == h.size(); // the surface flags, for water
+  for (Kind k : kinds) marked = marked && k == Kind::Fluid;
   for (std::size_t i = 0; i < h.size(); ++i) {
     bool take = false;
     for (Kind k : kinds) take = take || h.kind[i] == static_cast<std::uint8_t>(k);
@@ -109,6 +111,7 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
     press.push_back(static_cast<float>(h.press[i]));
     kind.push_back(h.kind[i]);
     id.push_back(h.id[i]);
+    if (marked) surface.push_back(h.surface[i]);
   }
   VtpBuilder b(id.size());
   b.points(pos);
@@ -117,6 +120,7 @@ void write_particles_vtp(const std::string& path, const particles::HostParticles
   b.array("pressure", press, 1);
   b.array("kind", kind, 1);
   b.array("id", id, 1);
+  if (marked) b.array("surface", surface, 1);
   b.write(path);
 }
 

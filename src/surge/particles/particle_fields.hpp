@@ -20,6 +20,8 @@ struct HostParticles {
   // Time-integration history (Verlet's v^{n-1}, rho^{n-1}); filled for checkpoints only.
   std::vector<Vec3> vel_prev;
   std::vector<Real> rho_prev;
+  // 1 at the free surface (WcsphSolver::mark_surface, for output frames; 0 until marked).
+  std::vector<std::uint8_t> surface;
   // Distributed runs: 1 for a halo copy of a particle another process owns (empty: all owned).
   std::vector<std::uint8_t> halo;
   [[nodiscard]] std::size_t size() const { return pos.size(); }
@@ -30,6 +32,7 @@ struct HostParticles {
     press.push_back(0);
     kind.push_back(static_cast<std::uint8_t>(k));
     id.push_back(ident);
+    surface.push_back(0);
   }
 };
 
@@ -57,6 +60,7 @@ void for_each_state_field(A& a, B& b, F&& f) {
   f("press", a.press, b.press, 0U, R{});
   f("kind", a.kind, b.kind, kSorted | kCheckpoint, decltype(&a.kind){});
   f("id", a.id, b.id, kSorted | kCheckpoint, decltype(&a.id){});
+  f("surface", a.surface, b.surface, 0U, decltype(&a.kind){});
 }
 
 // Keeps the particles i with keep(i), in order (every field that holds one value per

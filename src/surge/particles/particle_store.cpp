@@ -77,20 +77,9 @@ void ParticleStore::download(HostParticles& h, bool history) const {
 void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<std::size_t>(n_)); }
 
 ParticleView ParticleStore::view() {
-  return {n_,
-          f_.pos.data(),
-          f_.vel.data(),
-          f_.vel_prev.data(),
-          pos_prev_.data(),
-          acc_.data(),
-          f_.rho.data(),
-          f_.rho_prev.data(),
-          drho_.data(),
-          f_.press.data(),
-          vsig_.data(),
-          f_.kind.data(),
-          f_.id.data(),
-          halos() ? halo_.data() : nullptr};
+  return {n_,           f_.pos.data(),  f_.vel.data(),      f_.vel_prev.data(), pos_prev_.data(),
+          acc_.data(),  f_.rho.data(),  f_.rho_prev.data(), drho_.data(),       f_.press.data(),
+          vsig_.data(), f_.kind.data(), f_.id.data(),       f_.surface.data(),  halos() ? halo_.data() : nullptr};
 }
 
 template <class T>

@@ -25,6 +25,7 @@ struct ParticleView {
   Real* vsig = nullptr; // max_j |h v_ij.r_ij/(r^2+0.01h^2)| for the time step
   std::uint8_t* kind = nullptr;
   std::uint32_t* id = nullptr;
+  std::uint8_t* surface = nullptr; // 1 at the free surface, where marked (output frames)
   // halo[i] != 0 for a copy whose state is this process's only to read: 1 a copy of a
   // particle another process owns (a distributed run), 2 and up a periodic or mirrored image
   // (domain/images.hpp). Null: every particle is owned.
@@ -94,6 +95,7 @@ private:
     par::Buffer<Real> rho, rho_prev, press;
     par::Buffer<std::uint8_t> kind;
     par::Buffer<std::uint32_t> id;
+    par::Buffer<std::uint8_t> surface;
   };
   template <class T>
   void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);

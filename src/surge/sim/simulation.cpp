@@ -93,7 +93,8 @@ int check_warnings(const Case& c, const sph::InitialState& init, const CoupledPa
   };
   if (water_share < 0.98 && init.fluid_dropped_by_walls == 0)
     warn("the fluid boxes hold " + fmt(100 * water_share) +
-         " % of their volume in water: their sizes are not whole numbers of dp (choose dp dividing them)");
+         " % of their volume in water: their sizes are not whole numbers of dp (choose dp dividing them, or fill: "
+         "exact)");
   if (c.sph.h_over_dp < 1.2)
     warn("h = " + std::to_string(c.sph.h_over_dp) + " dp: the paper's run with h = 1.0 dp diverged; use 1.2 to 2.0");
   if (c.sph.h_over_dp > 2.0) warn("h > 2 dp widens the gap between water and walls (paper, sect. 3.1)");
@@ -182,16 +183,14 @@ int check(const Case& c) {
               init.n_fluid, init.n_wall, geometry::wall_layers(c), init.fluid_dropped_by_walls);
   double water_share = 1;
   if (!c.fluid.empty()) {
-    // Each fluid box holds a whole number of spacings per axis, centred in the box.
     // Counted before the water inside spheres is taken out.
-    const double placed = static_cast<double>(init.n_fluid + (cp ? cp->fluid_removed : 0)) * c.dp * c.dp * c.dp;
+    const double placed = init.fluid_volume_placed;
     water_share = placed / init.fluid_volume_asked;
     if (std::all_of(c.fluid.begin(), c.fluid.end(), [](const FluidRegion& f) { return f.reservoir; }))
       std::printf("water       %.6g m^3 placed (reservoirs filled to their levels)\n", placed);
     else
-      std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes and reservoirs (%.1f %%; lattices of "
-                  "whole spacings, centred in each box)\n",
-                  placed, init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
+      std::printf("water       %.6g m^3 placed of %.6g m^3 in the fluid boxes and reservoirs (%.1f %%)\n", placed,
+                  init.fluid_volume_asked, 100.0 * placed / init.fluid_volume_asked);
     if (init.reservoir_columns > 0)
       std::printf("reservoir   free surface %.6g m^2 (%ld lattice columns of dp^2), the water counted above\n",
                   static_cast<double>(init.reservoir_columns) * c.dp * c.dp, init.reservoir_columns);
@@ -216,7 +215,8 @@ int check(const Case& c) {
     print_slides(c, cp->setup);
     double slide_volume = 0;
     for (const auto& sl : cp->setup.slides) slide_volume += sl.volume;
-    const double displaced = static_cast<double>(cp->fluid_removed) * c.dp * c.dp * c.dp;
+    const double per_particle = init.particle_mass > 0 ? init.particle_mass / c.sph.rho0 : c.dp * c.dp * c.dp;
+    const double displaced = static_cast<double>(cp->fluid_removed) * per_particle;
     if (slide_volume > 0 && displaced > slide_volume)
       std::printf("warning     the slide bodies overlap %.6g m^3 of water, more than their own %.6g m^3: is the "
                   "sliding surface under the lake, or the level too high?\n",
@@ -355,7 +355,7 @@ public:
   bool write_frame(int frame, double t, std::string& failure) override {
     (void)failure; // a non-finite state has stopped the run before
     dist_.sync();
-    solver_.refresh();
+    solver_.mark_surface(); // refreshes
     dist_.gather(host_, false);
     const bool quiet = opt_.quiet || !root();
     if (root()) {

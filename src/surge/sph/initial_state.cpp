@@ -7,6 +7,7 @@
 #include "surge/geometry/reservoir.hpp"
 #include "surge/geometry/terrain.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <tuple>
@@ -66,19 +67,25 @@ std::vector<Vec3d> fluid_points(const Case& c, const FluidRegion& f, const Meshe
     s.reservoir_columns += fill.columns;
     s.reservoir_near_shore += fill.near_shore;
     s.fluid_volume_asked += static_cast<double>(fill.points.size()) * c.dp * c.dp * c.dp;
+    s.fluid_volume_placed += static_cast<double>(fill.points.size()) * c.dp * c.dp * c.dp;
     return std::move(fill.points);
   }
-  // Centred: a box that is not a whole number of spacings keeps its water in the middle,
-  // (surge check reports the volume placed against the volume asked for).
+  // exact: the box's own volume; lattice: centred, a box that is not a whole number of
+  // spacings keeps its water in the middle (surge check reports the volume placed
+  // against the volume asked for).
   s.fluid_volume_asked += f.box.volume();
+  const bool exact = f.fill == "exact";
   std::vector<Vec3d> pts;
-  for (const auto& p : geometry::fill_box(f.box, c.dp, true)) {
+  for (const auto& p :
+       geometry::fill_box(f.box, c.dp, exact ? geometry::BoxFill::Stretched : geometry::BoxFill::Centred)) {
     if (any_wall(c, meshes,
                  [&](const WallSpec& w, const geometry::Mesh* m) { return geometry::blocked_by(w, m, p, c.dp); }))
       ++s.fluid_dropped_by_walls;
     else
       pts.push_back(p);
   }
+  const double cell = exact ? geometry::stretched_cell_volume(f.box, c.dp) : c.dp * c.dp * c.dp;
+  s.fluid_volume_placed += static_cast<double>(pts.size()) * cell;
   return pts;
 }
 } // namespace
@@ -107,6 +114,7 @@ InitialState build_initial_state(const Case& c) {
       }
       s.n_fluid += f.given_pos.size();
       s.fluid_volume_asked += static_cast<double>(f.given_pos.size()) * c.dp * c.dp * c.dp;
+      s.fluid_volume_placed += static_cast<double>(f.given_pos.size()) * c.dp * c.dp * c.dp;
       continue;
     }
     for (const auto& p : fluid_points(c, f, meshes, lattice, s)) {
@@ -114,6 +122,11 @@ InitialState build_initial_state(const Case& c) {
       ++s.n_fluid;
     }
   }
+  // One mass for every SPH particle: the water placed over the fluid particles (a single
+  // exact box: its stretched cell exactly; boxes of several spacings: their mean).
+  const bool exact = std::any_of(c.fluid.begin(), c.fluid.end(),
+                                 [](const FluidRegion& f) { return !f.reservoir && !f.given() && f.fill == "exact"; });
+  if (exact && s.n_fluid > 0) s.particle_mass = rho0 * s.fluid_volume_placed / static_cast<double>(s.n_fluid);
   s.first_boundary_id = next_id;
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
     const auto& ws = c.walls[w];

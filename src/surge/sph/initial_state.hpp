@@ -37,7 +37,11 @@ struct InitialState {
     return -1;
   }
   std::size_t fluid_dropped_by_walls = 0;
-  double fluid_volume_asked = 0; // sum of the fluid boxes' volumes (n_fluid dp^3 is what was placed)
+  double fluid_volume_asked = 0;  // sum of the fluid boxes' volumes
+  double fluid_volume_placed = 0; // what the particles placed stand for (each its lattice cell)
+  // The SPH particles' mass when a box is filled exactly (rho0 times the volume placed per
+  // fluid particle); 0: rho0 dp^3 (solver_config's).
+  double particle_mass = 0;
   long reservoir_columns = 0;    // lattice columns with reservoir water: its surface area / dp^2
   long reservoir_near_shore = 0; // of these, those within 2 dp of the shore
   // Ghost nodes of the boundary (wall, then body) particles for sph.boundary: mdbc, as

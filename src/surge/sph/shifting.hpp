@@ -23,8 +23,8 @@ struct ShiftParams {
   // delta_plus (Sun et al. 2017): the speed in D in place of |u_i| (Ma c0), and the
   // anti-clumping weight 1 + R (W_ij / W(dp))^4 of each pair's term; speed 0: fickian.
   Real speed = 0;
-  Real clump = 0;       // R (0.2)
-  Real inv_w_dp = 0;    // 1 / W(dp)
+  Real clump = 0;    // R (0.2)
+  Real inv_w_dp = 0; // 1 / W(dp)
   [[nodiscard]] SURGE_HD bool on() const { return coefficient > 0; }
 };
 
@@ -36,8 +36,8 @@ struct ShiftSums {
 
 // The terms of the pair (i, j): rij = x_i - x_j, grad = grad_i W_ij, vol = V_j, w = W_ij.
 template <class T>
-SURGE_HD SURGE_INLINE void add_shift_terms(const ShiftParams& s, const Vec3T<T>& rij, const Vec3T<T>& grad, T vol,
-                                           T w, Vec3T<T>& grad_c, T& div_r) {
+SURGE_HD SURGE_INLINE void add_shift_terms(const ShiftParams& s, const Vec3T<T>& rij, const Vec3T<T>& grad, T vol, T w,
+                                           Vec3T<T>& grad_c, T& div_r) {
   div_r -= vol * dot(rij, grad);
   if (s.clump > 0) {
     const T q = w * s.inv_w_dp;

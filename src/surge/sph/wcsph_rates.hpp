@@ -248,4 +248,21 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   return finish_rates(prm, fluid_i, s, contact.choice);
 }
 
+// Whether fluid particle i lies at the free surface: its position divergence (shifting.hpp),
+// summed over neighbours of every kind, below prm.shift.surface (the frames' `surface`).
+[[nodiscard]] SURGE_HD inline bool at_free_surface(const WcsphParams& prm, const neighbour::GridView& g,
+                                                   const particles::ParticleView& p, int i) {
+  ShiftParams plain = prm.shift;
+  plain.clump = 0; // div r is never weighted
+  Vec3 grad_c{};
+  Real div_r = 0;
+  neighbour::for_each_neighbour(g, p.pos[i], prm.kernel.support() * prm.kernel.support(),
+                                [&](int j, const Vec3& rij, Real r2) {
+                                  if (j == i) return;
+                                  const Vec3 grad = rij * prm.kernel.dw_over_r(std::sqrt(r2));
+                                  add_shift_terms(plain, rij, grad, prm.mass / p.rho[j], Real(0), grad_c, div_r);
+                                });
+  return at_surface(prm.shift, div_r);
+}
+
 } // namespace surge::sph

@@ -188,6 +188,15 @@ void damp(const particles::ParticleView& p, DampingZones zones, Real dt) {
       });
 }
 
+// Each particle's free-surface flag (1: fluid at the surface).
+void mark_surface(const WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p) {
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for_uneven(
+      p.n, SURGE_LAMBDA(int i) {
+        p.surface[i] = p.kind[i] == fluid && at_free_surface(prm, g, p, i) ? std::uint8_t{1} : std::uint8_t{0};
+      });
+}
+
 // An axis-aligned box and its merge, for the reduction below (nvcc's extended lambdas
 // may not use types local to a function).
 struct Box2 {
@@ -221,6 +230,14 @@ std::pair<Vec3, Vec3> removed_bounds(const particles::ParticleView& p) {
 }
 } // namespace detail
 
+namespace {
+// The configuration with the particle mass of an exactly filled box (InitialState::particle_mass).
+SolverConfig with_mass(SolverConfig cfg, const InitialState& init) {
+  if (init.particle_mass > 0) cfg.prm.mass = static_cast<Real>(init.particle_mass);
+  return cfg;
+}
+} // namespace
+
 WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, const particles::HostParticles* held)
     : WcsphSolver(cfg, init, Unloaded{}) {
   store_.upload(held ? *held : init.particles);
@@ -231,8 +248,8 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, InitialState&& init) : WcsphSo
 }
 
 WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/)
-    : cfg_(cfg), boundary_(cfg.boundary->make(init, cfg.prm)), first_boundary_id_(init.first_boundary_id),
-      dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
+    : cfg_(with_mass(cfg, init)), boundary_(cfg_.boundary->make(init, cfg_.prm)),
+      first_boundary_id_(init.first_boundary_id), dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
   if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
   if (!init.moving.empty()) moving_ = MovingWalls(init, boundary_->ghost_offsets() != nullptr);
   set_up_images(init);
@@ -355,6 +372,12 @@ void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
 
 void WcsphSolver::refresh() {
   if (!fresh_) sort_and_rates();
+}
+
+void WcsphSolver::mark_surface() {
+  refresh();
+  const auto p = store_.view();
+  detail::mark_surface(cfg_.prm, grid_.view(p.pos, p.kind), p);
 }
 
 double WcsphSolver::dt_from_rates() {

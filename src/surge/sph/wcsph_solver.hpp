@@ -82,6 +82,9 @@ public:
   void restore(const particles::HostParticles& h, long steps);
   // Ensures sorted arrays, pressures and rates describe the current positions (for gauges/output).
   void refresh();
+  // Refreshes, then flags the fluid particles at the free surface (the frames' `surface`,
+  // shifting.hpp's criterion: position divergence below sph.free_surface).
+  void mark_surface();
   // Places the moving walls' particles from their bodies' states (states[k] for
   // InitialState::moving[k]), turning their ghost offsets and no-penetration faces: the run
   // loop calls it after each step with the states at the new time, and at the start.
