@@ -161,6 +161,14 @@ check(len(g) == 7 and abs(g[0, 1] - 0.2) < 0.02, f"gauge rows and initial height
 check(abs(g[0, 2] - 1000 * 9.81 * 0.17) < 0.1 * 1000 * 9.81 * 0.17, f"initial pressure near rho g (H - z) ({g[0, 2]})")
 r = run(["check", os.path.join(out, "case.yaml")])
 check(r.returncode == 0, "case.yaml as written is a valid case")
+# ... and with a particle table (fill is a box's: case.yaml must not give it to the table)
+write("water_ok.csv", "x,y,z,vx,vy,vz\n0.01,0.05,0.01,0,0,0\n0.03,0.05,0.01,0,0,0\n0.01,0.05,0.03,0,0,0\n")
+out_t = os.path.join(WORK, "out_table")
+r = run(["run", write("table.yaml", GOOD.replace("  - box: {min: [0, 0, 0], max: [0.1, 0.1, 0.2]}",
+                                                  "  - particles: water_ok.csv")), "--out", out_t, "--quiet",
+         "--set", "time.end=0.02"])
+r2 = run(["check", os.path.join(out_t, "case.yaml")])
+check(r.returncode == 0 and r2.returncode == 0, f"a particle table's run writes a valid case.yaml ({r2.stderr[-200:]})")
 
 # --- restart: a run stopped at 0.03 s and continued to 0.06 s ends bitwise identical
 out_a, out_b = os.path.join(WORK, "out_straight"), os.path.join(WORK, "out_restarted")

@@ -199,6 +199,95 @@ fluid: [{{particles: {table}}}]
     return worst
 
 
+# ---------------------------------------------------------------- 4. solitary wave
+SOL_H, SOL_A, SOL_DP = 0.1, 0.02, 0.005  # A / h = 0.2, 20 dp per depth
+SOL_LEN, SOL_WIDTH, SOL_X0 = 3.3, 0.025, 1.0
+SOL_K = math.sqrt(3 * SOL_A / (4 * SOL_H ** 3))
+SOL_C = math.sqrt(G * (SOL_H + SOL_A))
+SOL_GAUGES = [SOL_X0 + 0.25 * i for i in range(7)]  # to 15 depths from the start
+SOL_C0 = 12.0  # 11 c: Ma 0.09
+
+
+def solitary_state():
+    """Boussinesq's solitary wave eta = A sech^2(k (x - x0)), k = sqrt(3A / 4h^3), moving
+    at c = sqrt(g (h + A)) (SPEC 8): each column of dp holds round((h + eta) / dp)
+    particles, its spacing stretched to end at h + eta (the column's mass is its water's
+    within half a spacing), u = c eta / (h + eta) over the depth, w = -z du/dx
+    (continuity), the pressure hydrostatic below the column's surface."""
+    pos, vel, rho = [], [], []
+    nx, ny = round(SOL_LEN / SOL_DP), round(SOL_WIDTH / SOL_DP)
+    for i in range(nx):
+        x = (i + 0.5) * SOL_DP
+        sech2 = 1 / math.cosh(SOL_K * (x - SOL_X0)) ** 2
+        eta = SOL_A * sech2
+        d = SOL_H + eta
+        u = SOL_C * eta / d
+        deta = -2 * SOL_K * eta * math.tanh(SOL_K * (x - SOL_X0))
+        dudx = SOL_C * SOL_H * deta / (d * d)
+        n = round(d / SOL_DP)
+        s = d / n
+        for m in range(n):
+            z = (m + 0.5) * s
+            for j in range(ny):
+                pos.append((x, (j + 0.5) * SOL_DP, z))
+                vel.append((u, 0.0, -z * dudx))
+                rho.append(tait_density(RHO0 * G * (d - z), SOL_C0))
+    return np.array(pos), np.array(vel), np.array(rho)
+
+
+def solitary_case(name, table, sph):
+    end = (SOL_GAUGES[-1] - SOL_X0) / SOL_C + 0.25
+    gauges = "\n".join(f"  - {{name: g{i}, type: height, x: {x:.3f}, y: {SOL_WIDTH / 2}}}"
+                       for i, x in enumerate(SOL_GAUGES))
+    return f"""name: {name}
+dp: {SOL_DP}
+time: {{end: {end:.3f}, output_every: 0.5, gauge_every: 0.002}}
+gravity: [0, 0, -9.81]
+domain: {{min: [0, 0, 0], max: [{SOL_LEN}, {SOL_WIDTH}, 0.2], periodic: [ymin, ymax]}}
+sph: {{c0: {SOL_C0}, boundary: mdbc, integrator: symplectic, {sph}}}
+fluid: [{{particles: {table}}}]
+walls: [{{name: channel, box: {{min: [0, 0, 0], max: [{SOL_LEN}, {SOL_WIDTH}, 0.2]}}, open: [ymin, ymax, zmax]}}]
+gauges:
+{gauges}
+"""
+
+
+def crest(t, eta):
+    """The time and height of a gauge's highest sample, refined by the parabola through it
+    and its two neighbours."""
+    k = int(np.argmax(eta))
+    if 0 < k < len(eta) - 1:
+        a, b, c = eta[k - 1], eta[k], eta[k + 1]
+        den = a - 2 * b + c
+        off = 0.5 * (a - c) / den if den != 0 else 0.0
+        return t[k] + off * (t[k + 1] - t[k]), b - 0.25 * (a - c) * off
+    return t[k], eta[k]
+
+
+def solitary(label, sph, checked):
+    table = os.path.join(WORK, "solitary.csv")
+    if not os.path.exists(table):
+        write_table("solitary", *solitary_state())
+    out = checks.run("solitary_" + label, solitary_case("solitary_" + label, table, sph))
+    g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
+    s = surge_post.read_summary(os.path.join(out, "summary.json"))
+    crests = [crest(g["time"], g["g%d" % i] - SOL_H) for i in range(len(SOL_GAUGES))]
+    tc = np.array([c[0] for c in crests])
+    hc = np.array([c[1] for c in crests])
+    celerity = np.polyfit(tc[1:], SOL_GAUGES[1:], 1)[0]  # from the first gauge downstream of the start
+    err = celerity / SOL_C - 1
+    loss = 1 - hc[-1] / SOL_A
+    print(f"  {label}: crest heights {', '.join('%.2f' % (1000 * h) for h in hc)} mm at x = "
+          f"{', '.join('%.2f' % x for x in SOL_GAUGES)} m; celerity {celerity:.4f} m/s against "
+          f"sqrt(g(h + A)) = {SOL_C:.4f} ({100 * err:+.2f} %); height loss over 15 depths {100 * loss:.1f} % of A "
+          f"({100 * (1 - hc[-1] / hc[1]):.1f} % from the first gauge downstream); removed {s['removed']['total']}",
+          flush=True)
+    if checked:
+        check(s["removed"]["total"] == 0, f"solitary {label}: no water removed ({s['removed']})")
+        check(abs(err) < 0.02, f"solitary {label}: celerity within 2 % of sqrt(g (h + A)) ({100 * err:+.2f} %)")
+        check(loss <= 0.05, f"solitary {label}: height loss over 15 depths at most 5 % ({100 * loss:.1f} %)")
+
+
 # ---------------------------------------------------------------- 3. still water, shifting on
 HYDRO = """name: hydro_NAME
 dp: 0.01
@@ -248,4 +337,12 @@ if PART in (None, "hydrostatic"):
     hydrostatic("fickian", "shifting: fickian")
     if OPEN:
         hydrostatic("delta_plus", "shifting: delta_plus, shifting_coefficient: 10")
+if PART == "solitary":  # its own ctest (waves_solitary)
+    print("4. solitary wave, A/h = %.1f: celerity %.4f m/s" % (SOL_A / SOL_H, SOL_C), flush=True)
+    solitary("laminar_fickian", "viscosity: laminar, shifting: fickian", True)
+    if LONG:
+        for label, sph in (("laminar", "viscosity: laminar"), ("artificial", "viscosity: artificial"),
+                           ("artificial_fickian", "viscosity: artificial, shifting: fickian"),
+                           ("laminar_sps_fickian", "viscosity: laminar_sps, shifting: fickian")):
+            solitary(label, sph, False)
 checks.finish("wave theory")

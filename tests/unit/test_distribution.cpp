@@ -105,6 +105,14 @@ TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSymplecticMdbc
   EXPECT_EQ(slab_mismatches(extra, 1.0, true, 8), 0);
 }
 
+TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSpsAndShifting) {
+  // The SPS stress reads the neighbours' neighbours: the reach doubles (two supports).
+  const std::string extra = "sph: {viscosity: laminar_sps, shifting: fickian}\n";
+  EXPECT_EQ(slab_mismatches(extra, 1.0, false, 10), 0);
+  EXPECT_EQ(slab_mismatches(extra, 1.0, true, 10), 0);
+  EXPECT_GT(slab_mismatches(extra, 0.6, false, 4), 0); // one support and a bit: too thin
+}
+
 TEST(Distribution, TooThinAHaloChangesTheResult) {
   // The comparison above can fail: with too thin a halo particles near the cut miss
   // neighbours and come out different. (With mDBC the reach is a bound: it takes the
@@ -122,6 +130,9 @@ TEST(Distribution, ReachCountsEvaluationsAndGhosts) {
   const Case sym = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {integrator: symplectic}\n"), "tank.yaml");
   const sph::WcsphSolver b(sph::solver_config(sym), sph::build_initial_state(sym));
   EXPECT_DOUBLE_EQ(b.dependency_reach(), 2 * support);
+  const Case sps = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {viscosity: laminar_sps}\n"), "tank.yaml");
+  const sph::WcsphSolver t(sph::solver_config(sps), sph::build_initial_state(sps));
+  EXPECT_DOUBLE_EQ(t.dependency_reach(), 2 * support);
   const Case md = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: mdbc}\n"), "tank.yaml");
   const sph::WcsphSolver m(sph::solver_config(md), sph::build_initial_state(md));
   // Ghosts lie up to twice the wall thickness away (a corner particle's, farther).

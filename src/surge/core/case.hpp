@@ -34,8 +34,10 @@ struct TimeConfig {
 struct SphConfig {
   double h_over_dp = 1.2;
   double alpha = 0.01;
-  std::string viscosity = "artificial"; // artificial (SPEC 2.4) | laminar (SPEC 8, Morris et al. 1997)
+  std::string viscosity = "artificial"; // artificial (SPEC 2.4) | laminar (SPEC 8, Morris et al. 1997) | laminar_sps
   double nu = 1.0e-6;                   // kinematic viscosity [m^2/s] (laminar)
+  double sps_smagorinsky = 0.12;        // laminar_sps: C_s (Dalrymple & Rogers 2006)
+  double sps_blin = 0.0066;             // laminar_sps: C_I
   std::string shifting = "none";        // none | fickian (SPEC 8, Lind et al. 2012)
   double shifting_coefficient = 2.0;    // A
   double shifting_mach = 0.1;           // delta_plus: the flow's Mach number (speed in D: Ma c0)

@@ -59,6 +59,9 @@ public:
   // components reversed; density, pressure, kind as they are).
   void refresh(const particles::ParticleView& p) const;
   [[nodiscard]] long count() const { return images_; }
+  // By id: the index of the particle an image copies (valid after link; execution space),
+  // for fields the refresh does not copy.
+  [[nodiscard]] const std::uint32_t* sources() const { return where_.data(); }
   [[nodiscard]] std::size_t bytes() const { return where_.bytes() + count_.bytes() + src_.bytes() + shift_.bytes(); }
 
 private:

@@ -1026,8 +1026,9 @@ void write_box(YAML::Emitter& e, const Box& b) {
 
 // Writes the keys of one table declared in case_schema.cpp.
 template <class S>
-void write_fields(YAML::Emitter& e, const std::vector<Field<S>>& fields, const S& s) {
+void write_fields(YAML::Emitter& e, const std::vector<Field<S>>& fields, const S& s, const char* skip = nullptr) {
   for (const auto& f : fields) {
+    if (skip && f.key == std::string_view(skip)) continue;
     e << YAML::Key << f.key << YAML::Value;
     std::visit(
         [&](auto m) {
@@ -1219,7 +1220,7 @@ std::string to_yaml(const Case& c) {
       e << YAML::Key << "box" << YAML::Value;
       write_box(e, f.box);
     }
-    write_fields(e, fluid_fields(), f);
+    write_fields(e, fluid_fields(), f, f.reservoir || f.given() ? "fill" : nullptr); // fill: a box's only
     e << YAML::EndMap;
   }
   e << YAML::EndSeq;

@@ -82,10 +82,13 @@ const std::vector<Field<SphConfig>>& sph_fields() {
        &S::viscosity,
        "",
        {},
-       {"artificial", "laminar"},
-       "momentum's viscous term: artificial (Monaghan's, coefficient alpha) or laminar (Morris et al. 1997, the "
-       "water's kinematic viscosity nu; walls drag with their own velocity)"},
-      {"nu", &S::nu, "m^2/s", non_negative(), {}, "kinematic viscosity of the water (laminar)"},
+       {"artificial", "laminar", "laminar_sps"},
+       "momentum's viscous term: artificial (Monaghan's, coefficient alpha), laminar (Morris et al. 1997, the "
+       "water's kinematic viscosity nu; walls drag with their own velocity) or laminar_sps (laminar plus the "
+       "sub-particle-scale stress of Dalrymple & Rogers 2006, filter width dp)"},
+      {"nu", &S::nu, "m^2/s", non_negative(), {}, "kinematic viscosity of the water (laminar, laminar_sps)"},
+      {"sps_smagorinsky", &S::sps_smagorinsky, "-", non_negative(), {}, "laminar_sps: Smagorinsky constant C_s"},
+      {"sps_blin", &S::sps_blin, "-", non_negative(), {}, "laminar_sps: Blin constant C_I"},
       {"shifting",
        &S::shifting,
        "",

@@ -10,7 +10,10 @@ SolverConfig solver_config(const Case& c) {
   p.mass = static_cast<Real>(c.sph.rho0 * c.dp * c.dp * c.dp);
   p.dp = static_cast<Real>(c.dp);
   p.alpha = static_cast<Real>(c.sph.alpha);
-  p.viscosity = c.sph.viscosity == "laminar" ? Viscosity::Laminar : Viscosity::Artificial;
+  p.viscosity = c.sph.viscosity == "laminar"       ? Viscosity::Laminar
+                : c.sph.viscosity == "laminar_sps" ? Viscosity::LaminarSps
+                                                   : Viscosity::Artificial;
+  s.sps = {static_cast<Real>(c.sph.sps_smagorinsky), static_cast<Real>(c.sph.sps_blin), p.dp};
   p.nu = static_cast<Real>(c.sph.nu);
   if (c.sph.shifting != "none") p.shift.coefficient = static_cast<Real>(c.sph.shifting_coefficient);
   if (c.sph.shifting == "delta_plus") { // Sun et al. 2017: CFL Ma (2h)^2 = 4 h (Ma c0) dt

@@ -4,6 +4,7 @@
 #include "surge/core/case.hpp"
 #include "surge/sph/boundary/boundary_model.hpp"
 #include "surge/sph/damping.hpp"
+#include "surge/sph/sps_turbulence.hpp"
 #include "surge/sph/wcsph_rates.hpp"
 
 namespace surge::sph {
@@ -19,6 +20,7 @@ struct SolverConfig {
   int euler_every = 40;          // Verlet: an Euler step every this many steps
   Real rho_min = 0, rho_max = 0; // removal bounds [kg/m^3]
   DampingZones damping;          // case damping, in local coordinates (domain min at 0)
+  SpsParams sps;                 // prm.viscosity LaminarSps: the SPS pass's constants
 };
 
 // The solver's configuration of case c (SPEC §2: h, c0, m = rho0 dp^3, ...).

@@ -30,8 +30,9 @@
 
 namespace surge::sph {
 
-// The momentum equation's viscous term (sph.viscosity).
-enum class Viscosity : std::uint8_t { Artificial, Laminar };
+// The momentum equation's viscous term (sph.viscosity); LaminarSps adds the SPS stress
+// (sps_turbulence.hpp, its own passes) to the laminar term.
+enum class Viscosity : std::uint8_t { Artificial, Laminar, LaminarSps };
 
 struct WcsphParams {
   WendlandC2 kernel;
@@ -154,7 +155,7 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
     coef = vr < 0 ? coef - visc : coef;
   }
   s.acc -= grad * (prm.mass * coef);
-  if (prm.viscosity == Viscosity::Laminar)
+  if (prm.viscosity == Viscosity::Laminar || prm.viscosity == Viscosity::LaminarSps)
     s.acc += vij * (prm.mass * 4 * prm.nu * dot(rij, grad) * inv_rho_sum * inv_r2e);
   if (prm.shift.on()) add_shift_terms(prm.shift, rij, grad, prm.mass / b.rho, prm.kernel.w(r), s.grad_c, s.div_r);
 }

@@ -197,6 +197,26 @@ void mark_surface(const WcsphParams& prm, const neighbour::GridView& g, const pa
       });
 }
 
+// The SPS stress of every particle (sps_turbulence.hpp), images' taken from the particles
+// they copy (`sources`: by id, null without images), mirrored where they are; then the SPS
+// term added to each fluid particle's acceleration.
+void add_sps(const WcsphParams& prm, const SpsParams& sps, const neighbour::GridView& g,
+             const particles::ParticleView& p, const std::uint32_t* sources, SymTensor* tau) {
+  par::parallel_for_uneven(
+      p.n, SURGE_LAMBDA(int i) { tau[i] = sps_stress_of(sps, prm.kernel, prm.mass, g, p, i); });
+  if (sources)
+    par::parallel_for(
+        p.n, SURGE_LAMBDA(int i) {
+          if (p.halo[i] < domain::image_flag) return;
+          tau[i] = tau[sources[p.id[i]]].mirrored(static_cast<unsigned>(p.halo[i] - domain::image_flag));
+        });
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for_uneven(
+      p.n, SURGE_LAMBDA(int i) {
+        if (p.kind[i] == fluid) p.acc[i] += sps_acceleration_of(prm.kernel, prm.mass, g, p, tau, i);
+      });
+}
+
 // An axis-aligned box and its merge, for the reduction below (nvcc's extended lambdas
 // may not use types local to a function).
 struct Box2 {
@@ -310,7 +330,9 @@ void WcsphSolver::set_distribution(const Distribution& d) {
 }
 
 double WcsphSolver::dependency_reach() const {
-  const double per_evaluation = static_cast<double>(cfg_.prm.kernel.support()) + boundary_->extra_reach();
+  // The SPS stress of a neighbour reads that neighbour's neighbours: one support more.
+  const double sps = cfg_.prm.viscosity == Viscosity::LaminarSps ? static_cast<double>(cfg_.prm.kernel.support()) : 0;
+  const double per_evaluation = static_cast<double>(cfg_.prm.kernel.support()) + boundary_->extra_reach() + sps;
   return (cfg_.integrator == Integrator::Symplectic ? 2 : 1) * per_evaluation;
 }
 
@@ -355,6 +377,10 @@ void WcsphSolver::rates() {
   }
   const auto t = par::timed(par::Phase::Rates);
   detail::compute_rates(cfg_.prm, hold_.view(), g, p, out);
+  if (cfg_.prm.viscosity == Viscosity::LaminarSps) {
+    sps_.resize(static_cast<std::size_t>(p.n));
+    detail::add_sps(cfg_.prm, cfg_.sps, g, p, images_.on() ? images_.sources() : nullptr, sps_.data());
+  }
 }
 
 void WcsphSolver::move_walls(const std::vector<RigidState>& states) {

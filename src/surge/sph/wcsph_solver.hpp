@@ -65,7 +65,7 @@ public:
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
     return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes() + images_.bytes() +
-           shift_.size() * sizeof(ShiftSums);
+           shift_.size() * sizeof(ShiftSums) + sps_.size() * sizeof(SymTensor);
   }
   [[nodiscard]] neighbour::GridView grid_view() {
     const particles::ParticleView v = store_.view();
@@ -114,6 +114,7 @@ private:
   MovingWalls moving_;                      // walls with a motion
   domain::Images images_;                   // domain.periodic and domain.symmetry
   par::Buffer<ShiftSums> shift_;            // sph.shifting: each particle's sums from the last rates
+  par::Buffer<SymTensor> sps_;              // laminar_sps: each particle's SPS stress tau/rho
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
