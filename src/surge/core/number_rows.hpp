@@ -47,8 +47,13 @@ inline std::vector<NumberRow> read_number_rows(const std::string& path, std::siz
     while (all >> word) {
       char* end = nullptr;
       const double x = std::strtod(word.c_str(), &end);
-      if (end == word.c_str() || *end != '\0' || !std::isfinite(x))
-        throw InputError(path, lineno, "", "'" + word + "' is not a finite number; " + expected);
+      if (end == word.c_str() || *end != '\0' || !std::isfinite(x)) {
+        std::string msg = "'";
+        msg += word;
+        msg += "' is not a finite number; ";
+        msg += expected;
+        throw InputError(path, lineno, "", msg);
+      }
       row.v.push_back(x);
     }
     if (row.v.size() < least || row.v.size() > most) throw InputError(path, lineno, "", expected);
