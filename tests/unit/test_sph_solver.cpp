@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -30,6 +31,18 @@ particles::HostParticles by_id(const sph::WcsphSolver& s) {
     out.press.back() = h.press[i];
   }
   return out;
+}
+
+// The lowest and highest x and z of a set of points.
+std::array<double, 4> x_z_range(const std::vector<Vec3>& pos) {
+  std::array<double, 4> r{1e9, -1e9, 1e9, -1e9};
+  for (const auto& p : pos) {
+    r[0] = std::min(r[0], static_cast<double>(p.x));
+    r[1] = std::max(r[1], static_cast<double>(p.x));
+    r[2] = std::min(r[2], static_cast<double>(p.z));
+    r[3] = std::max(r[3], static_cast<double>(p.z));
+  }
+  return r;
 }
 
 } // namespace
@@ -218,13 +231,7 @@ TEST(InitialState, FluidLatticeIsCentredInItsBox) {
                                           ",0.1,0.292]}, fill: lattice}]\n",
                                       "col.yaml");
     const auto init = sph::build_initial_state(c);
-    double lo = 1e9, hi = -1e9, zlo = 1e9, zhi = -1e9;
-    for (const auto& p : init.particles.pos) {
-      lo = std::min(lo, static_cast<double>(p.x));
-      hi = std::max(hi, static_cast<double>(p.x));
-      zlo = std::min(zlo, static_cast<double>(p.z));
-      zhi = std::max(zhi, static_cast<double>(p.z));
-    }
+    const auto [lo, hi, zlo, zhi] = x_z_range(init.particles.pos);
     EXPECT_NEAR(init.fluid_volume_asked, (x1 - x0) * 0.1 * 0.292, 1e-12);
     EXPECT_EQ(init.n_fluid, 14U * 10U * 29U);
     EXPECT_NEAR(zlo - 0.005, 0.292 - (zhi + 0.005), 1e-6); // 29 layers in 0.292 m: 1 mm above and below
@@ -251,13 +258,7 @@ TEST(InitialState, ExactFillHoldsTheBoxVolume) {
   const double volume = 0.146 * 0.1 * 0.292;
   EXPECT_NEAR(init.fluid_volume_placed, volume, 1e-12);
   EXPECT_NEAR(init.particle_mass, 1000 * volume / (15 * 10 * 29), 1e-12);
-  double lo = 1e9, hi = -1e9, zlo = 1e9, zhi = -1e9;
-  for (const auto& p : init.particles.pos) {
-    lo = std::min(lo, static_cast<double>(p.x));
-    hi = std::max(hi, static_cast<double>(p.x));
-    zlo = std::min(zlo, static_cast<double>(p.z));
-    zhi = std::max(zhi, static_cast<double>(p.z));
-  }
+  const auto [lo, hi, zlo, zhi] = x_z_range(init.particles.pos);
   const double sx = 0.146 / 15, sz = 0.292 / 29;
   EXPECT_NEAR(lo, sx / 2, 1e-6);
   EXPECT_NEAR(hi, 0.146 - sx / 2, 1e-6);

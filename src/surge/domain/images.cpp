@@ -115,7 +115,7 @@ void link(const particles::ParticleView& p, std::uint32_t* where) {
 void refresh(const particles::ParticleView& p, ImageFrame f, const std::uint32_t* where) {
   par::parallel_for(
       p.n, SURGE_LAMBDA(int i) {
-        if (p.halo[i] < image_flag) return;
+        if (!is_image(p, i)) return;
         const auto j = static_cast<int>(where[p.id[i]]);
         const Vec3 xi = p.pos[i], xj = p.pos[j];
         const unsigned mirrored = static_cast<unsigned>(p.halo[i] - image_flag);

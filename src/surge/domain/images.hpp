@@ -20,6 +20,11 @@ namespace surge::domain {
 // image_flag plus a bit per axis on which the image is mirrored (1 x, 2 y, 4 z).
 inline constexpr std::uint8_t image_flag = 2;
 
+// Whether particle i is an image (not a particle of its own, nor a distributed run's copy).
+[[nodiscard]] SURGE_HD inline bool is_image(const particles::ParticleView& p, int i) {
+  return p.halo != nullptr && p.halo[i] >= image_flag;
+}
+
 // A fluid particle that crossed a face during a step, put back: wrapped into [lo, hi) once
 // across a periodic face (a particle crosses at most one period a step), or reflected in a
 // symmetry face with its velocities' normal components reversed (its mirror image crossed

@@ -73,11 +73,12 @@ const std::vector<Field<TimeConfig>>& time_fields() {
   return f;
 }
 
-const std::vector<Field<SphConfig>>& sph_fields() {
+namespace {
+// sph's model choices: the viscous term (with SPS's constants), particle shifting and the
+// free surface it needs.
+std::vector<Field<SphConfig>> sph_model_fields() {
   using S = SphConfig;
-  static const std::vector<Field<S>> f{
-      {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
-      {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2)"},
+  return {
       {"viscosity",
        &S::viscosity,
        "",
@@ -111,6 +112,14 @@ const std::vector<Field<SphConfig>>& sph_fields() {
        {},
        "a particle whose position divergence (3 inside the water) is below this lies at the free surface: not "
        "shifted, and flagged in the frames' surface field"},
+  };
+}
+
+// sph's scheme: density diffusion, sound speed, time step and integrator, wall model,
+// removal bounds, the initial state.
+std::vector<Field<SphConfig>> sph_scheme_fields() {
+  using S = SphConfig;
+  return {
       {"delta", &S::delta, "-", non_negative(), {}, "delta-SPH density diffusion coefficient (SPEC 2.3)"},
       {"eta", &S::eta, "-", positive(), {}, "speed of sound over sqrt(g hmax) when c0 is 0 (SPEC 2.4)"},
       {"cfl",
@@ -173,6 +182,19 @@ const std::vector<Field<SphConfig>>& sph_fields() {
        {},
        "start the water at the hydrostatic density below its box's top"},
   };
+}
+} // namespace
+
+const std::vector<Field<SphConfig>>& sph_fields() {
+  using S = SphConfig;
+  static const std::vector<Field<S>> f = [] {
+    std::vector<Field<S>> rows{
+        {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
+        {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2)"},
+    };
+    for (auto&& part : {sph_model_fields(), sph_scheme_fields()}) rows.insert(rows.end(), part.begin(), part.end());
+    return rows;
+  }();
   return f;
 }
 

@@ -84,14 +84,14 @@ SURGE_HD inline void add_strain_terms(const Vec3& vji, const Vec3& grad, Real vo
                                                        const neighbour::GridView& g, const particles::ParticleView& p,
                                                        const SymTensor* tau, int i) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  const Real rho_i = p.rho[i];
+  const Real wi = 1 / p.rho[i];
   const SymTensor ti = tau[i];
   Vec3 a{};
   neighbour::for_each_neighbour(g, p.pos[i], kernel.support() * kernel.support(), [&](int j, const Vec3& rij, Real r2) {
     if (j == i || p.kind[j] != fluid) return;
     const Vec3 grad = rij * kernel.dw_over_r(std::sqrt(r2));
     const SymTensor tj = tau[j];
-    const Real wi = 1 / rho_i, wj = 1 / p.rho[j];
+    const Real wj = 1 / p.rho[j];
     const SymTensor sum{ti.xx * wi + tj.xx * wj, ti.yy * wi + tj.yy * wj, ti.zz * wi + tj.zz * wj,
                         ti.xy * wi + tj.xy * wj, ti.xz * wi + tj.xz * wj, ti.yz * wi + tj.yz * wj};
     a += sum.dot(grad) * mass;

@@ -202,13 +202,16 @@ void mark_surface(const WcsphParams& prm, const neighbour::GridView& g, const pa
 // term added to each fluid particle's acceleration.
 void add_sps(const WcsphParams& prm, const SpsParams& sps, const neighbour::GridView& g,
              const particles::ParticleView& p, const std::uint32_t* sources, SymTensor* tau) {
+  // Images are left to the copy below.
   par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) { tau[i] = sps_stress_of(sps, prm.kernel, prm.mass, g, p, i); });
+      p.n, SURGE_LAMBDA(int i) {
+        if (!sources || !domain::is_image(p, i)) tau[i] = sps_stress_of(sps, prm.kernel, prm.mass, g, p, i);
+      });
   if (sources)
     par::parallel_for(
         p.n, SURGE_LAMBDA(int i) {
-          if (p.halo[i] < domain::image_flag) return;
-          tau[i] = tau[sources[p.id[i]]].mirrored(static_cast<unsigned>(p.halo[i] - domain::image_flag));
+          if (domain::is_image(p, i))
+            tau[i] = tau[sources[p.id[i]]].mirrored(static_cast<unsigned>(p.halo[i] - domain::image_flag));
         });
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
   par::parallel_for_uneven(
