@@ -182,6 +182,12 @@ with open(fa[-1][1], "rb") as x, open(fb[-1][1], "rb") as y:
     check(x.read() == y.read(), "restarted run's last frame is bitwise identical to the straight run's")
 with open(os.path.join(out_a, "gauges.csv")) as x, open(os.path.join(out_b, "gauges.csv")) as y:
     check(x.read() == y.read(), "gauges.csv identical after restart")
+# A restart asking for denser frames gets them from where it starts, not from the old
+# schedule's next frame on.
+r = run(["restart", out_b, "--set", "time.end=0.07", "--set", "time.output_every=0.002"])
+late = [t for t, _ in surge_post.read_pvd(os.path.join(out_b, "fluid.pvd")) if t > 0.06 + 1e-9]
+check(r.returncode == 0 and len(late) == 5 and abs(late[0] - 0.062) < 1e-9,
+      f"a restart with output_every 0.002 writes frames at 0.062 ... 0.07 ({late})")
 r = run(["restart", os.path.join(WORK, "out_bad_typo")])
 check(r.returncode == 2, "restart of a folder without a run exits 2")
 # --- issue 34's bad input: --out naming a file, a folder as the case, a Courant number above 1

@@ -41,7 +41,7 @@ TEST(CaseReader, DefaultsFromSpec) {
   EXPECT_DOUBLE_EQ(c.sph.delta, 0.1);
   EXPECT_DOUBLE_EQ(c.sph.eta, 20);
   EXPECT_DOUBLE_EQ(c.sph.cfl, 0.2);
-  EXPECT_EQ(c.sph.euler_every, 40);
+  EXPECT_EQ(c.sph.euler_every, 10);
   EXPECT_DOUBLE_EQ(c.gravity.z, -9.81);
   EXPECT_DOUBLE_EQ(c.water_depth(), 0.16);
   ASSERT_EQ(c.walls.size(), 1U);

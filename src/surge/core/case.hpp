@@ -52,7 +52,8 @@ struct SphConfig {
   std::string diffusion = "molteni"; // density diffusion: molteni (SPEC §2.3) | fourtakas (dynamic part only)
   std::string boundary = "dynamic";  // dynamic (the paper's, SPEC §2.6) | mdbc (English et al. 2022, no gap)
   bool no_penetration = true;        // keep fluid dp/4 in front of every wall face (sph/boundary/no_penetration.hpp)
-  int euler_every = 40;
+  int euler_every =
+      10; // Verlet: an Euler step every this many steps (40 is unstable with delta-SPH: docs/validation.md)
   double rho_min = 0.7; // removal bounds, as fractions of rho0
   double rho_max = 1.3;
   double max_removed_share = 0.05; // stop the run beyond this share of fluid particles removed

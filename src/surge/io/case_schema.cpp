@@ -161,7 +161,13 @@ std::vector<Field<SphConfig>> sph_scheme_fields() {
        {},
        "keep water a quarter spacing in front of every wall face, with either wall model, so that impacts cannot push "
        "it through a wall"},
-      {"euler_every", &S::euler_every, "steps", at_least(1), {}, "Verlet: an Euler step every this many steps"},
+      {"euler_every",
+       &S::euler_every,
+       "steps",
+       at_least(1),
+       {},
+       "Verlet: an Euler step every this many steps (at 40, the paper's, the density diffusion's leapfrog mode "
+       "grows: docs/physics.md)"},
       {"rho_min",
        &S::rho_min,
        "of rho0",

@@ -38,6 +38,12 @@ public:
     // was advanced: never take a zero-length step on their account.
     while (next_out_ <= t_ + 1e-9 * c_.time.end) next_out_ += c_.time.output_every;
     while (next_gauge_ <= t_ + 1e-9 * c_.time.end) next_gauge_ += c_.time.gauge_every;
+    // A restart asked for denser outputs or gauges (--set time.output_every=...) gets them
+    // from now, not after the old schedule's next time; the schedule itself (the same
+    // bits) is kept wherever it comes first.
+    const double slack = 1e-9 * c_.time.end;
+    if (t_ + c_.time.output_every < next_out_ - slack) next_out_ = t_ + c_.time.output_every;
+    if (t_ + c_.time.gauge_every < next_gauge_ - slack) next_gauge_ = t_ + c_.time.gauge_every;
     frame_times_ = k.frame_times;
     rows_ = k.gauge_rows;
     rows_written_ = rows_.size();

@@ -17,7 +17,7 @@ struct SolverConfig {
   const BoundaryModelInfo* boundary = nullptr; // sph.boundary (never null after solver_config)
   bool no_penetration = true;                  // sph.no_penetration
   double cfl = 0.2;
-  int euler_every = 40;          // Verlet: an Euler step every this many steps
+  int euler_every = 10;          // Verlet: an Euler step every this many steps
   Real rho_min = 0, rho_max = 0; // removal bounds [kg/m^3]
   DampingZones damping;          // case damping, in local coordinates (domain min at 0)
   SpsParams sps;                 // prm.viscosity LaminarSps: the SPS pass's constants
