@@ -182,6 +182,18 @@ with open(fa[-1][1], "rb") as x, open(fb[-1][1], "rb") as y:
     check(x.read() == y.read(), "restarted run's last frame is bitwise identical to the straight run's")
 with open(os.path.join(out_a, "gauges.csv")) as x, open(os.path.join(out_b, "gauges.csv")) as y:
     check(x.read() == y.read(), "gauges.csv identical after restart")
+# ... and with laminar_sps, whose stress each particle carries from step to step (in the
+# checkpoint: version 5)
+sa, sb = os.path.join(WORK, "sps_straight"), os.path.join(WORK, "sps_restarted")
+sps = ["--set", "sph.viscosity=laminar_sps", "--set", "time.end=0.06"]
+run(["run", os.path.join(WORK, "good.yaml"), "--out", sa, "--quiet"] + sps)
+run(["run", os.path.join(WORK, "good.yaml"), "--out", sb, "--quiet"] + sps + ["--set", "time.end=0.03"])
+with open(os.path.join(sb, "checkpoint.bin"), "rb") as x:
+    check(x.read(8)[7:] == b"5", "a laminar_sps checkpoint is version 5 (it holds the stress)")
+r = run(["restart", sb, "--set", "time.end=0.06"])
+fa, fb = surge_post.read_pvd(os.path.join(sa, "fluid.pvd")), surge_post.read_pvd(os.path.join(sb, "fluid.pvd"))
+with open(fa[-1][1], "rb") as x, open(fb[-1][1], "rb") as y:
+    check(r.returncode == 0 and x.read() == y.read(), "laminar_sps: the restarted run's last frame is bitwise identical")
 # A restart asking for denser frames gets them from where it starts, not from the old
 # schedule's next frame on.
 r = run(["restart", out_b, "--set", "time.end=0.07", "--set", "time.output_every=0.002"])

@@ -46,6 +46,7 @@ void take(particles::HostParticles& part, const particles::HostParticles& all, s
   part.push(all.pos[i], all.vel[i], all.rho[i], static_cast<Kind>(all.kind[i]), all.id[i]);
   part.vel_prev.push_back(all.vel_prev[i]);
   part.rho_prev.push_back(all.rho_prev[i]);
+  if (!all.sps.empty()) part.sps.push_back(all.sps[i]);
   part.halo.push_back(mine ? 0 : 1);
 }
 
@@ -106,11 +107,14 @@ TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSymplecticMdbc
 }
 
 TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSpsAndShifting) {
-  // The SPS stress reads the neighbours' neighbours: the reach doubles (two supports).
+  // The SPS stress is carried from step to step; a run's first pass sets it first and so
+  // reads the neighbours' neighbours: the reach doubles (two supports).
   const std::string extra = "sph: {viscosity: laminar_sps, shifting: fickian}\n";
   EXPECT_EQ(slab_mismatches(extra, 1.0, false, 10), 0);
   EXPECT_EQ(slab_mismatches(extra, 1.0, true, 10), 0);
-  EXPECT_GT(slab_mismatches(extra, 0.6, false, 4), 0); // one support and a bit: too thin
+  // Starting from rest the first stress is 0 wherever it is set: after it a step reads one
+  // support (on this lattice 0.8 of it holds every neighbour too); half a support is too thin.
+  EXPECT_GT(slab_mismatches(extra, 0.25, false, 4), 0);
 }
 
 TEST(Distribution, TooThinAHaloChangesTheResult) {

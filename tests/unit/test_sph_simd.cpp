@@ -4,7 +4,8 @@
 // The sums are reordered (lane k sums pairs k, k + 8, ...), so each rate may differ by the
 // rounding of a reordered float sum: 1e-5 of the sum of the magnitudes of its pair terms
 // (60 terms at 6e-8 each, with margin). The wall plane each fluid particle picks and the
-// signal speed (a maximum) are exact. Every instruction set gives the same bits.
+// signal speed (a maximum) are exact. Every instruction set gives the same bits. With
+// laminar_sps the strain rate too (each component against the sum of |S| over the pairs).
 #include "test_helpers.hpp"
 
 #include "surge/sph/boundary/mdbc_density.hpp"
@@ -28,8 +29,13 @@ namespace {
 // The sum of the magnitudes of particle i's pair terms, per rate: the scale of a reordered
 // sum's rounding.
 struct TermScale {
-  Real acc = 0, drho = 0, grad_c = 0, div_r = 0;
+  Real acc = 0, drho = 0, grad_c = 0, div_r = 0, strain = 0;
 };
+
+// |S| of a strain rate's components (Frobenius).
+Real magnitude(const SymTensor& s) {
+  return std::sqrt(s.xx * s.xx + s.yy * s.yy + s.zz * s.zz + 2 * (s.xy * s.xy + s.xz * s.xz + s.yz * s.yz));
+}
 
 TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, const particles::ParticleView& p,
                      int i) {
@@ -41,12 +47,20 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
       g, p.pos[i], prm.kernel.support() * prm.kernel.support(), [&](int j, const Vec3& rij, Real r2) {
         if (j == i || (!fluid_i && p.kind[j] != fluid)) return;
         sph::PairSums<Real> one;
+        const bool fluid_pair = fluid_i && p.kind[j] == fluid;
         sph::add_pair_terms(prm, rij, r2, std::sqrt(r2), a, sph::PairSide<Real>{p.vel[j], p.rho[j], p.press[j]},
-                            fluid_i && p.kind[j] == fluid, one);
+                            fluid_pair, one);
         t.acc += norm(one.acc);
         t.drho += std::fabs(one.drho) + std::fabs(prm.delta * prm.kernel.h * prm.eos.c0 * one.diff);
         t.grad_c += norm(one.grad_c);
         t.div_r += std::fabs(one.div_r);
+        if (p.sps) {
+          sph::SpsSums<Real> sps;
+          sph::add_sps_pair(prm, rij, std::sqrt(r2), a.vel, a.rho, p.sps[i], p.vel[j], p.rho[j], p.sps[j], fluid_pair,
+                            sps);
+          t.acc += norm(sps.acc);
+          t.strain += magnitude(sps.strain);
+        }
       });
   return t;
 }
@@ -54,7 +68,8 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
 bool same_bits(const sph::Rates& a, const sph::Rates& b) {
   return std::memcmp(&a.acc, &b.acc, sizeof a.acc) == 0 && std::memcmp(&a.drho, &b.drho, sizeof a.drho) == 0 &&
          std::memcmp(&a.vsig, &b.vsig, sizeof a.vsig) == 0 && std::memcmp(&a.wall, &b.wall, sizeof a.wall) == 0 &&
-         std::memcmp(&a.shift, &b.shift, sizeof a.shift) == 0;
+         std::memcmp(&a.shift, &b.shift, sizeof a.shift) == 0 &&
+         std::memcmp(&a.strain, &b.strain, sizeof a.strain) == 0;
 }
 
 // The rates a batched copy stores for every particle (the blocks the solver hands it).
@@ -62,11 +77,13 @@ std::vector<sph::Rates> batched_all(sph::RatesFn f, const sph::WcsphSolver& s, c
                                     const particles::ParticleView& p) {
   std::vector<sph::WallChoice> faces(static_cast<std::size_t>(p.n));
   std::vector<sph::ShiftSums> shift(static_cast<std::size_t>(p.n));
-  const sph::RatesOut out{faces.data(), s.params().shift.on() ? shift.data() : nullptr};
+  std::vector<SymTensor> strain(static_cast<std::size_t>(p.n));
+  const sph::RatesOut out{faces.data(), s.params().shift.on() ? shift.data() : nullptr,
+                          p.sps ? strain.data() : nullptr};
   for (int b = 0; b < p.n; b += sph::rates_block)
     f(s.params(), g, p, s.hold_view(), out, b, std::min(p.n, b + sph::rates_block));
   std::vector<sph::Rates> rates(static_cast<std::size_t>(p.n));
-  for (int i = 0; i < p.n; ++i) rates[i] = sph::Rates{p.acc[i], p.drho[i], p.vsig[i], faces[i], shift[i]};
+  for (int i = 0; i < p.n; ++i) rates[i] = sph::Rates{p.acc[i], p.drho[i], p.vsig[i], faces[i], shift[i], strain[i]};
   return rates;
 }
 
@@ -98,6 +115,12 @@ std::array<int, 8> compare_rates(sph::WcsphSolver& s, const std::string& what) {
     if (prm.shift.on()) {
       EXPECT_LE(norm(got.shift.grad_c - ref.shift.grad_c), 1e-5f * t.grad_c) << what << ": particle " << i;
       EXPECT_LE(std::fabs(got.shift.div_r - ref.shift.div_r), 1e-5f * t.div_r) << what << ": particle " << i;
+    }
+    if (p.sps) {
+      const SymTensor& a = got.strain;
+      const SymTensor& b = ref.strain;
+      const SymTensor d{a.xx - b.xx, a.yy - b.yy, a.zz - b.zz, a.xy - b.xy, a.xz - b.xz, a.yz - b.yz};
+      EXPECT_LE(magnitude(d), 1e-5f * t.strain) << what << ": particle " << i;
     }
     EXPECT_EQ(std::memcmp(&got.wall, &ref.wall, sizeof ref.wall), 0) << what << ": particle " << i;
     int pairs = 0;
@@ -141,6 +164,14 @@ TEST(SphSimd, LaminarViscosityAndShiftingMatchScalar) {
                       "sph: {boundary: mdbc, viscosity: laminar, shifting: delta_plus, integrator: symplectic}\n"),
       40);
   compare_rates(m, "mdbc + laminar + delta_plus shifting");
+}
+
+// laminar_sps: the strain rate summed in the pair loop and the stress's momentum term read
+// from the stresses the particles carry (40 steps in: every fluid particle carries one).
+TEST(SphSimd, SpsStressTermsMatchScalar) {
+  auto s = advanced(test::tank_case(0.01, 0.0, "sph: {viscosity: laminar_sps, shifting: fickian}\n"), 40);
+  ASSERT_NE(s.view().sps, nullptr);
+  compare_rates(s, "laminar_sps");
 }
 
 // mDBC's boundary densities with the ghost sums 8 neighbours at a time (mdbc_range) against

@@ -82,7 +82,7 @@ void list_images(const particles::ParticleView& p, const std::uint8_t* halo, Ima
 }
 
 // The copies at [first, first + m) become images: moved by their shifts (mirrored
-// velocity components reversed), flagged with their mirrored axes.
+// velocity components reversed, the SPS stress seen mirrored), flagged with their mirrored axes.
 void place_images(const particles::ParticleView& p, std::uint8_t* halo, ImageFrame f, int first, int m,
                   const std::uint32_t* shift) {
   par::parallel_for(
@@ -101,6 +101,7 @@ void place_images(const particles::ParticleView& p, std::uint8_t* halo, ImageFra
         p.pos[i] = x;
         p.vel[i] = v;
         p.vel_prev[i] = v_prev;
+        if (p.sps) p.sps[i] = p.sps[i].mirrored(mirrored);
         halo[i] = static_cast<std::uint8_t>(image_flag + mirrored);
       });
 }
@@ -140,6 +141,7 @@ void refresh(const particles::ParticleView& p, ImageFrame f, const std::uint32_t
         p.rho_prev[i] = p.rho_prev[j];
         p.press[i] = p.press[j];
         p.kind[i] = p.kind[j];
+        if (p.sps) p.sps[i] = p.sps[j].mirrored(mirrored);
       });
 }
 } // namespace detail

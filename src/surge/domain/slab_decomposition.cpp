@@ -16,34 +16,41 @@ namespace {
 
 // One particle as it travels between processes: every state field (particles/
 // particle_fields.hpp: what a step needs; rates are recomputed after every exchange), its
-// bytes in the list's order, 62 bytes.
-std::size_t record_size() {
+// bytes in the list's order, 62 bytes; the optional ones (the SPS stress) only where the
+// run holds them (`optional`, alike on every process), 0 where a particle has none.
+std::size_t record_size(bool optional) {
   std::size_t size = 0;
   particles::HostParticles h;
-  particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned, const auto*) {
-    size += sizeof(typename std::decay_t<decltype(v)>::value_type);
+  particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
+    if (optional || !(use & particles::kOptional)) size += sizeof(typename std::decay_t<decltype(v)>::value_type);
   });
   return size;
 }
 
-void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i) {
-  particles::for_each_state_field(h, h, [&](const char*, const auto& v, const auto&, unsigned, const auto*) {
+void append(std::vector<char>& out, const particles::HostParticles& h, std::size_t i, bool optional) {
+  particles::for_each_state_field(h, h, [&](const char*, const auto& v, const auto&, unsigned use, const auto*) {
+    if (!optional && (use & particles::kOptional)) return;
+    typename std::decay_t<decltype(v)>::value_type x{};
+    if (i < v.size()) x = v[i];
     const auto at = out.size();
-    out.resize(at + sizeof(v[i]));
-    std::memcpy(out.data() + at, &v[i], sizeof(v[i]));
+    out.resize(at + sizeof x);
+    std::memcpy(out.data() + at, &x, sizeof x);
   });
 }
 
+// dst gets src's particle i (an optional field only where src holds it).
 void push(particles::HostParticles& dst, const particles::HostParticles& src, std::size_t i, std::uint8_t halo) {
-  particles::for_each_state_field(
-      dst, src, [&](const char*, auto& d, const auto& s, unsigned, const auto*) { d.push_back(s[i]); });
+  particles::for_each_state_field(dst, src, [&](const char*, auto& d, const auto& s, unsigned use, const auto*) {
+    if (!(use & particles::kOptional) || i < s.size()) d.push_back(s[i]);
+  });
   dst.halo.push_back(halo);
 }
 
-void unpack(const std::vector<char>& in, particles::HostParticles& h, std::uint8_t halo) {
-  const std::size_t size = record_size();
+void unpack(const std::vector<char>& in, particles::HostParticles& h, std::uint8_t halo, bool optional) {
+  const std::size_t size = record_size(optional);
   for (std::size_t at = 0; at + size <= in.size();) {
-    particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned, const auto*) {
+    particles::for_each_state_field(h, h, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
+      if (!optional && (use & particles::kOptional)) return;
       typename std::decay_t<decltype(v)>::value_type x{};
       std::memcpy(&x, in.data() + at, sizeof x);
       at += sizeof x;
@@ -194,10 +201,10 @@ void SlabDecomposition::halo_records(const particles::HostParticles& h, std::vec
     // Slabs are ordered: walk away from this one while x is within reach; in a ring, the
     // first and last slabs too, unless the walk reached them.
     int first = sv.me, last = sv.me;
-    for (int r = sv.me - 1; r >= 0 && sv.in_reach_of(x, r); --r) append(out[first = r], h, i);
-    for (int r = sv.me + 1; r < sv.ranks && sv.in_reach_of(x, r); ++r) append(out[last = r], h, i);
-    if (first > 0 && sv.needs(x, 0)) append(out[0], h, i);
-    if (last < sv.ranks - 1 && sv.needs(x, sv.ranks - 1)) append(out[sv.ranks - 1], h, i);
+    for (int r = sv.me - 1; r >= 0 && sv.in_reach_of(x, r); --r) append(out[first = r], h, i, optional_);
+    for (int r = sv.me + 1; r < sv.ranks && sv.in_reach_of(x, r); ++r) append(out[last = r], h, i, optional_);
+    if (first > 0 && sv.needs(x, 0)) append(out[0], h, i, optional_);
+    if (last < sv.ranks - 1 && sv.needs(x, sv.ranks - 1)) append(out[sv.ranks - 1], h, i, optional_);
   }
 }
 
@@ -275,16 +282,16 @@ ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const
   store.extract(leave, leaving);
   store.extract(near, staying);
   std::vector<std::vector<char>> out(static_cast<std::size_t>(p));
-  for (std::size_t i = 0; i < leaving.size(); ++i) append(out[owner(leaving.pos[i][axis_])], leaving, i);
+  for (std::size_t i = 0; i < leaving.size(); ++i) append(out[owner(leaving.pos[i][axis_])], leaving, i, optional_);
   for (const auto& o : out) s.bytes_sent += o.size();
   particles::HostParticles arrived, halo;
-  for (const auto& in : comm::all_to_all(out)) unpack(in, arrived, 0);
+  for (const auto& in : comm::all_to_all(out)) unpack(in, arrived, 0, optional_);
   // Halo copies of what stays and of what just arrived (it may be near another face).
   for (auto& o : out) o.clear();
   halo_records(staying, out);
   halo_records(arrived, out);
   for (const auto& o : out) s.bytes_sent += o.size();
-  for (const auto& in : comm::all_to_all(out)) unpack(in, halo, 1);
+  for (const auto& in : comm::all_to_all(out)) unpack(in, halo, 1, optional_);
   s.halo = halo.size();
   for (std::size_t i = 0; i < halo.size(); ++i) push(arrived, halo, i, 1);
   store.remove(drop);
@@ -295,10 +302,10 @@ ExchangeStats SlabDecomposition::exchange(particles::ParticleStore& store, const
 particles::HostParticles SlabDecomposition::gather(const particles::HostParticles& local) const {
   std::vector<char> mine;
   for (std::size_t i = 0; i < local.size(); ++i)
-    if (!is_halo(local, i) && !removed(local, i)) append(mine, local, i);
+    if (!is_halo(local, i) && !removed(local, i)) append(mine, local, i, optional_);
   const std::vector<char> all = comm::gather(mine);
   particles::HostParticles unordered, h;
-  unpack(all, unordered, 0);
+  unpack(all, unordered, 0, optional_);
   std::vector<std::size_t> order(unordered.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(),

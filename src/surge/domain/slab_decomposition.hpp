@@ -71,6 +71,9 @@ public:
   // on one process) and its halo copy, sent across the ring, is brought back alike.
   SlabDecomposition(int axis, double lo, double hi, double reach, bool ring = false);
   [[nodiscard]] int axis() const { return axis_; }
+  // Whether particles carry the optional state fields (ParticleStore::optional), alike on
+  // every process.
+  void carry_optional(bool on) { optional_ = on; }
   [[nodiscard]] double reach() const { return reach_; }
   // Slab faces: process r owns [cuts[r], cuts[r+1]) along the axis.
   [[nodiscard]] const std::vector<double>& cuts() const { return cuts_; }
@@ -121,7 +124,8 @@ private:
   par::Buffer<std::uint32_t> sel_index_; // the exchange's selection: particle indices
   par::Buffer<std::uint8_t> sel_code_;   // ... and what each one does
   int axis_;
-  bool ring_; // the axis is periodic: the slabs form a ring
+  bool ring_;             // the axis is periodic: the slabs form a ring
+  bool optional_ = false; // records carry the optional state fields (carry_optional)
   double lo_, hi_, reach_, bin_;
   std::vector<double> cuts_;
 };

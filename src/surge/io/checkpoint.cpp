@@ -11,9 +11,9 @@
 namespace surge::io {
 namespace {
 
-constexpr char magic[8] = {
-    'S', 'U', 'R', 'G',
-    'E', 'C', 'K', '3'}; // 2: with the DEM state; 3: hazard maps; 4: free bodies (written only with them)
+// The last byte is the version: 2 with the DEM state, 3 hazard maps, 4 free bodies, 5 the
+// SPS stress (4 and 5 written only with what they add).
+constexpr char magic[8] = {'S', 'U', 'R', 'G', 'E', 'C', 'K', '3'};
 
 class Writer {
 public:
@@ -80,16 +80,27 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.put<std::uint64_t>(c.gauge_rows.size());
   for (const auto& r : c.gauge_rows) w.put_vec(r);
   const auto& p = c.particles;
+  bool optional = false; // an optional field held (the SPS stress)
   particles::for_each_state_field(p, p, [&](const char*, const auto& v, const auto&, unsigned use, const auto*) {
-    if (use & particles::kCheckpoint) w.put_vec(v);
+    if (!(use & particles::kCheckpoint)) return;
+    if (use & particles::kOptional)
+      optional = optional || !v.empty();
+    else
+      w.put_vec(v);
   });
   w.put_vec(std::vector<char>(c.dem_state.begin(), c.dem_state.end()));
   w.put_vec(std::vector<char>(c.hazard_state.begin(), c.hazard_state.end()));
-  // Version 4 adds the free bodies; without them version 3's bytes are written (the same
-  // checkpoint as before bodies existed).
-  if (!c.body_state.empty()) {
+  // Version 4 adds the free bodies, version 5 the optional fields after them; without them
+  // the bytes of version 3 (or 4) are written (the same checkpoint as before they existed).
+  if (!c.body_state.empty() || optional) {
     w.bytes_[sizeof magic - 1] = '4';
     w.put_vec(std::vector<char>(c.body_state.begin(), c.body_state.end()));
+  }
+  if (optional) {
+    w.bytes_[sizeof magic - 1] = '5';
+    particles::for_each_state_field(p, p, [&](const char*, const auto& v, const auto&, unsigned use, const auto*) {
+      if ((use & particles::kCheckpoint) && (use & particles::kOptional)) w.put_vec(v);
+    });
   }
   write_file_atomic(path, w.bytes_);
 }
@@ -105,11 +116,11 @@ Checkpoint read_checkpoint(const std::string& path) {
   const char version = bytes.size() >= sizeof magic && std::memcmp(bytes.data(), magic, sizeof magic - 1) == 0
                            ? bytes[sizeof magic - 1]
                            : '\0';
-  if (version < '1' || version > '4') {
-    if (version > '4')
+  if (version < '1' || version > '5') {
+    if (version > '5')
       throw InputError(path, 0, "",
                        std::string("checkpoint version ") + version +
-                           " is newer than this surge reads (4); restart it with the surge that wrote it");
+                           " is newer than this surge reads (5); restart it with the surge that wrote it");
     throw InputError(path, 0, "", "not a surge checkpoint");
   }
   const bool v1 = version == '1';
@@ -132,7 +143,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   for (std::uint64_t k = 0; k < rows; ++k) c.gauge_rows.push_back(r.get_vec<double>());
   auto& p = c.particles;
   particles::for_each_state_field(p, p, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
-    if (use & particles::kCheckpoint) v = r.get_vec<typename std::decay_t<decltype(v)>::value_type>();
+    if ((use & particles::kCheckpoint) && !(use & particles::kOptional))
+      v = r.get_vec<typename std::decay_t<decltype(v)>::value_type>();
   });
   if (!v1) {
     const auto dem = r.get_vec<char>();
@@ -146,10 +158,17 @@ Checkpoint read_checkpoint(const std::string& path) {
     const auto b = r.get_vec<char>();
     c.body_state.assign(b.begin(), b.end());
   }
+  if (version >= '5')
+    particles::for_each_state_field(p, p, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
+      if ((use & particles::kCheckpoint) && (use & particles::kOptional))
+        v = r.get_vec<typename std::decay_t<decltype(v)>::value_type>();
+    });
   const auto n = p.pos.size();
   bool sizes_agree = r.done();
   particles::for_each_state_field(p, p, [&](const char*, auto& v, auto&, unsigned use, const auto*) {
-    if (use & particles::kCheckpoint)
+    if (use & particles::kOptional)
+      sizes_agree = sizes_agree && (v.empty() || v.size() == n); // held or not
+    else if (use & particles::kCheckpoint)
       sizes_agree = sizes_agree && v.size() == n;
     else
       v.assign(n, {}); // not checkpointed: recomputed (pressure)

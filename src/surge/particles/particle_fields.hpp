@@ -4,6 +4,7 @@
 // walk for_each_state_field; a new field is a member of HostParticles, a buffer of the
 // same name in ParticleStore::Fields and one line of the list.
 #pragma once
+#include "surge/core/sym_tensor.hpp"
 #include "surge/core/types.hpp"
 
 #include <cstdint>
@@ -22,6 +23,9 @@ struct HostParticles {
   std::vector<Real> rho_prev;
   // 1 at the free surface (WcsphSolver::mark_surface, for output frames; 0 until marked).
   std::vector<std::uint8_t> surface;
+  // sph.viscosity: laminar_sps only (empty otherwise): the SPS stress tau/rho the next rates
+  // pass reads (sph/sps_turbulence.hpp), from the strain rate of the last one.
+  std::vector<SymTensor> sps;
   // Distributed runs: 1 for a halo copy of a particle another process owns (empty: all owned).
   std::vector<std::uint8_t> halo;
   [[nodiscard]] std::size_t size() const { return pos.size(); }
@@ -42,6 +46,8 @@ enum FieldUse : unsigned {
   kCheckpoint = 2, // written to checkpoints (the others restart as zero)
   kHistory = 4,    // integration history: downloaded only when asked, and when not
                    // given on upload it starts as `from` (the current value)
+  kOptional = 8,   // held only where a model asks for it (ParticleStore::set_optional):
+                   // empty elsewhere, on the host and in the store alike
 };
 
 // Calls f(name, a.field, b.field, uses, from) for every field, in checkpoint order, on two
@@ -61,6 +67,7 @@ void for_each_state_field(A& a, B& b, F&& f) {
   f("kind", a.kind, b.kind, kSorted | kCheckpoint, decltype(&a.kind){});
   f("id", a.id, b.id, kSorted | kCheckpoint, decltype(&a.id){});
   f("surface", a.surface, b.surface, 0U, decltype(&a.kind){});
+  f("sps", a.sps, b.sps, kSorted | kCheckpoint | kOptional, decltype(&a.sps){});
 }
 
 // Keeps the particles i with keep(i), in order (every field that holds one value per

@@ -10,7 +10,10 @@ namespace surge::particles {
 void ParticleStore::upload(const HostParticles& h) {
   begin_upload(h);
   for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned use, const auto* from) {
-    par::upload(buf, (use & kHistory) && host.size() != h.size() ? *from : host);
+    if (use & kOptional)
+      upload_optional(buf, host, use);
+    else
+      par::upload(buf, (use & kHistory) && host.size() != h.size() ? *from : host);
   });
   finish_upload(h);
 }
@@ -27,12 +30,27 @@ void ParticleStore::upload(HostParticles&& h) {
   });
   auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
   for_each_state_field(h, f_, [&](const char*, auto& host, auto& buf, unsigned use, auto* from) {
-    par::upload(buf, (use & kHistory) && host.size() != n ? *from : host);
+    if (use & kOptional)
+      upload_optional(buf, host, use);
+    else
+      par::upload(buf, (use & kHistory) && host.size() != n ? *from : host);
     if (from) release(*from);
     if (std::find(sources.begin(), sources.end(), &host) == sources.end()) release(host);
   });
   finish_upload(h);
   h = HostParticles{};
+}
+
+template <class T>
+void ParticleStore::upload_optional(par::Buffer<T>& buf, const std::vector<T>& host, unsigned use) {
+  if (!held(use))
+    buf.resize(0);
+  else if (host.size() == static_cast<std::size_t>(n_))
+    par::upload(buf, host);
+  else {
+    buf.resize(static_cast<std::size_t>(n_));
+    par::fill(buf, T{});
+  }
 }
 
 void ParticleStore::begin_upload(const HostParticles& h) {
@@ -63,7 +81,7 @@ void ParticleStore::finish_upload(const HostParticles& h) {
 void ParticleStore::download(HostParticles& h, bool history) const {
   const auto n = static_cast<std::size_t>(n_);
   for_each_state_field(h, f_, [&](const char*, auto& host, const auto& buf, unsigned use, const auto*) {
-    if ((use & kHistory) && !history)
+    if (((use & kHistory) && !history) || !held(use))
       host.clear();
     else
       par::download(host, buf, n);
@@ -77,9 +95,22 @@ void ParticleStore::download(HostParticles& h, bool history) const {
 void ParticleStore::reserve_position_scratch() { pos_prev_.resize(static_cast<std::size_t>(n_)); }
 
 ParticleView ParticleStore::view() {
-  return {n_,           f_.pos.data(),  f_.vel.data(),      f_.vel_prev.data(), pos_prev_.data(),
-          acc_.data(),  f_.rho.data(),  f_.rho_prev.data(), drho_.data(),       f_.press.data(),
-          vsig_.data(), f_.kind.data(), f_.id.data(),       f_.surface.data(),  halos() ? halo_.data() : nullptr};
+  return {n_,
+          f_.pos.data(),
+          f_.vel.data(),
+          f_.vel_prev.data(),
+          pos_prev_.data(),
+          acc_.data(),
+          f_.rho.data(),
+          f_.rho_prev.data(),
+          drho_.data(),
+          f_.press.data(),
+          vsig_.data(),
+          f_.kind.data(),
+          f_.id.data(),
+          f_.surface.data(),
+          optional_ ? f_.sps.data() : nullptr,
+          halos() ? halo_.data() : nullptr};
 }
 
 template <class T>
@@ -107,7 +138,7 @@ int ParticleStore::sort(neighbour::UniformGrid& grid) {
   // built, as the scratch of id.
   par::Buffer<std::uint32_t>& spent_keys = grid.spent_keys();
   for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned use, const auto*) {
-    if (!(use & kSorted)) return;
+    if (!(use & kSorted) || !held(use)) return;
     if constexpr (std::is_same_v<std::decay_t<decltype(buf)>, par::Buffer<std::uint32_t>>)
       reorder(buf, spent_keys, perm);
     else
@@ -186,8 +217,11 @@ void ParticleStore::extract(const std::vector<std::uint32_t>& idx, HostParticles
   const int n = static_cast<int>(idx.size());
   par::upload(idx_, idx);
   const std::uint32_t* k = idx_.data();
-  for_each_state_field(out, f_, [&](const char*, auto& host, const auto& buf, unsigned, const auto*) {
-    detail::gather_to_host(buf, k, n, extract_, host);
+  for_each_state_field(out, f_, [&](const char*, auto& host, const auto& buf, unsigned use, const auto*) {
+    if (held(use))
+      detail::gather_to_host(buf, k, n, extract_, host);
+    else
+      host.clear();
   });
   out.halo.assign(idx.size(), 0);
 }
@@ -209,8 +243,11 @@ void ParticleStore::remove(const std::vector<std::uint32_t>& idx) {
 void ParticleStore::append(const HostParticles& h) {
   if (h.size() == 0) return;
   const auto n_old = static_cast<std::size_t>(n_);
-  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned, const auto*) {
-    detail::append_field(buf, host, n_old);
+  for_each_state_field(h, f_, [&](const char*, const auto& host, auto& buf, unsigned use, const auto*) {
+    if (!held(use)) return;
+    // An optional field the host does not give starts as 0.
+    using T = typename std::decay_t<decltype(host)>::value_type;
+    detail::append_field(buf, host.size() == h.size() ? host : std::vector<T>(h.size(), T{}), n_old);
   });
   if (halos())
     detail::append_field(halo_, h.halo.size() == h.size() ? h.halo : std::vector<std::uint8_t>(h.size(), 0), n_old);
@@ -237,8 +274,9 @@ int ParticleStore::append_copies(const std::uint32_t* idx, int m) {
   const int n_old = n_;
   if (m == 0) return n_old;
   const auto old = static_cast<std::size_t>(n_old), n_new = old + static_cast<std::size_t>(m);
-  for_each_state_field(
-      f_, f_, [&](const char*, auto& buf, auto&, unsigned, const auto*) { detail::copy_to_tail(buf, idx, m, old); });
+  for_each_state_field(f_, f_, [&](const char*, auto& buf, auto&, unsigned use, const auto*) {
+    if (held(use)) detail::copy_to_tail(buf, idx, m, old);
+  });
   if (halos()) detail::copy_to_tail(halo_, idx, m, old);
   n_ = n_old + m;
   acc_.resize_keep(n_new);
@@ -253,7 +291,7 @@ std::size_t ParticleStore::bytes() const {
                        [&](const char*, const auto& buf, const auto&, unsigned, const auto*) { b += buf.bytes(); });
   for (const auto* x : {&pos_prev_, &acc_}) b += x->bytes();
   for (const auto* x : {&drho_, &vsig_}) b += x->bytes();
-  return b + cls_.bytes() + halo_.bytes() + tmpu_.bytes() + idx_.bytes() + extract_.bytes();
+  return b + cls_.bytes() + halo_.bytes() + tmpu_.bytes() + idx_.bytes() + extract_.bytes() + sps_scratch_.bytes();
 }
 
 } // namespace surge::particles

@@ -26,6 +26,7 @@ struct ParticleView {
   std::uint8_t* kind = nullptr;
   std::uint32_t* id = nullptr;
   std::uint8_t* surface = nullptr; // 1 at the free surface, where marked (output frames)
+  SymTensor* sps = nullptr;        // the SPS stress tau/rho (sph.viscosity: laminar_sps; else null)
   // halo[i] != 0 for a copy whose state is this process's only to read: 1 a copy of a
   // particle another process owns (a distributed run), 2 and up a periodic or mirrored image
   // (domain/images.hpp). Null: every particle is owned.
@@ -45,6 +46,10 @@ public:
   void set_distributed(bool on) { distributed_ = on; }
   // A store with periodic or mirrored images carries the halo flag too (not the sort by id).
   void set_images(bool on) { images_ = on; }
+  // Whether the optional state fields (particle_fields.hpp: kOptional) are held: set before
+  // the first upload. Held, a field the host does not give starts as 0.
+  void set_optional(bool on) { optional_ = on; }
+  [[nodiscard]] bool optional() const { return optional_; }
   [[nodiscard]] bool distributed() const { return distributed_; }
   // The halo flags, writable (periodic images mark their own; null without halos).
   [[nodiscard]] std::uint8_t* halo_flags() { return halos() ? halo_.data() : nullptr; }
@@ -89,6 +94,9 @@ public:
 private:
   void begin_upload(const HostParticles& h);
   void finish_upload(const HostParticles& h);
+  // An optional field from the host: empty unless held, 0 where the host gives none.
+  template <class T>
+  void upload_optional(par::Buffer<T>& buf, const std::vector<T>& host, unsigned use);
   // The state fields (particle_fields.hpp), one buffer each, named as in HostParticles.
   struct Fields {
     par::Buffer<Vec3> pos, vel, vel_prev;
@@ -96,13 +104,17 @@ private:
     par::Buffer<std::uint8_t> kind;
     par::Buffer<std::uint32_t> id;
     par::Buffer<std::uint8_t> surface;
+    par::Buffer<SymTensor> sps;
   };
+  // Whether a field of these uses is held (an optional one only when asked).
+  [[nodiscard]] bool held(unsigned use) const { return !(use & kOptional) || optional_; }
   template <class T>
   void reorder(par::Buffer<T>& field, par::Buffer<T>& tmp, const std::uint32_t* perm);
   // The sort's gather scratch for a field of each type: buffers rebuilt after every sort.
   par::Buffer<Vec3>& scratch(par::Buffer<Vec3>& /*field*/) { return acc_; }
   par::Buffer<Real>& scratch(par::Buffer<Real>& /*field*/) { return drho_; }
   par::Buffer<std::uint8_t>& scratch(par::Buffer<std::uint8_t>& /*field*/) { return cls_; }
+  par::Buffer<SymTensor>& scratch(par::Buffer<SymTensor>& /*field*/) { return sps_scratch_; }
   int n_ = 0;
   int removed_pending_ = 0; // marked Removed since the last sort
   Fields f_;
@@ -112,6 +124,8 @@ private:
   [[nodiscard]] bool halos() const { return distributed_ || images_; }
   bool distributed_ = false; // sorts by id
   bool images_ = false;
+  bool optional_ = false;
+  par::Buffer<SymTensor> sps_scratch_; // the sort's gather scratch of the SPS stress (held with it)
   par::Buffer<std::uint8_t> cls_, halo_;
   par::Buffer<std::uint32_t> tmpu_;    // the exchange's scratch (distributed runs only)
   par::Buffer<std::uint32_t> idx_;     // the exchange's selection

@@ -25,6 +25,7 @@ DistributedRun::DistributedRun(const Case& c, sph::WcsphSolver& solver, coupling
   const int axis = domain::longest_axis(lo, hi);
   slabs_.emplace(axis, 0.0, static_cast<double>(hi[axis]), solver.dependency_reach(),
                  c.periodic[static_cast<std::size_t>(axis)]);
+  slabs_->carry_optional(solver.store().optional());
   dist_ = slabs_->distribution();
   solver.set_distribution(dist_);
   if (coupling) coupling->set_distribution(dist_, c.coupling.force_sum == "per_sphere");

@@ -6,14 +6,15 @@
 //   nu_t = (C_s D)^2 |S_i|,  |S| = (2 S:S)^(1/2),  D = dp
 //   dv_i/dt += sum_j m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W_ij  (fluid j only: the
 //             stress is the water's; walls drag through the laminar term)
-// Two passes, each particle writing only its own: the stress of every particle (images take
-// theirs from the particles they copy, halo copies compute their own: the stress reaches one
-// support further, WcsphSolver::dependency_reach), then the momentum term of each fluid
-// particle, added to the acceleration the rates pass wrote.
+// In DualSPHysics's order: the stress is a particle's state (ParticleView::sps: sorted,
+// exchanged, checkpointed). The rates pass sums the strain rate and the momentum term from
+// the stresses the particles carry, in the same pair loop; the step then sets each
+// particle's stress from its strain rate (WcsphSolver::step), so the momentum term reads
+// the stress of the step before (of the half step, symplectic). A run's first pass is done
+// twice, the stress set between (WcsphSolver::rates): the first step is not one late.
 #pragma once
-#include "surge/neighbour/uniform_grid.hpp"
-#include "surge/particles/particle_store.hpp"
-#include "surge/sph/kernel_wendland_c2.hpp"
+#include "surge/core/lanes.hpp"
+#include "surge/core/sym_tensor.hpp"
 
 namespace surge::sph {
 
@@ -23,24 +24,10 @@ struct SpsParams {
   Real delta = 0;         // filter width D = dp
 };
 
-// A symmetric tensor: the strain rate S or the stress tau/rho.
-struct SymTensor {
-  Real xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
-  // The tensor times the vector g.
-  [[nodiscard]] SURGE_HD Vec3 dot(const Vec3& g) const {
-    return {xx * g.x + xy * g.y + xz * g.z, xy * g.x + yy * g.y + yz * g.z, xz * g.x + yz * g.y + zz * g.z};
-  }
-  // The tensor seen in a frame mirrored on the axes whose bits are set in `mirrored` (1 x,
-  // 2 y, 4 z): an off-diagonal component changes sign when one of its two axes is mirrored.
-  [[nodiscard]] SURGE_HD SymTensor mirrored(unsigned m) const {
-    const auto sign = [m](unsigned a, unsigned b) { return ((m >> a) ^ (m >> b)) & 1U ? Real(-1) : Real(1); };
-    return {xx, yy, zz, xy * sign(0, 1), xz * sign(0, 2), yz * sign(1, 2)};
-  }
-};
-
 // The strain rate's term of the pair (i, j): vji = v_j - v_i, grad = grad_i W_ij, vol = V_j.
-SURGE_HD inline void add_strain_terms(const Vec3& vji, const Vec3& grad, Real vol, SymTensor& s) {
-  const Real h = Real(0.5) * vol;
+template <class T>
+SURGE_HD SURGE_INLINE void add_strain_terms(const Vec3T<T>& vji, const Vec3T<T>& grad, T vol, SymTensorT<T>& s) {
+  const T h = Real(0.5) * vol;
   s.xx += vol * vji.x * grad.x;
   s.yy += vol * vji.y * grad.y;
   s.zz += vol * vji.z * grad.z;
@@ -65,38 +52,23 @@ SURGE_HD inline void add_strain_terms(const Vec3& vji, const Vec3& grad, Real vo
           two_nut * s.yz};
 }
 
-// The stress tau/rho of particle i (zero unless fluid).
-[[nodiscard]] SURGE_HD inline SymTensor sps_stress_of(const SpsParams& c, const WendlandC2& kernel, Real mass,
-                                                      const neighbour::GridView& g, const particles::ParticleView& p,
-                                                      int i) {
-  if (p.kind[i] != static_cast<std::uint8_t>(Kind::Fluid)) return {};
-  const Vec3 vi = p.vel[i];
-  SymTensor s;
-  neighbour::for_each_neighbour(g, p.pos[i], kernel.support() * kernel.support(), [&](int j, const Vec3& rij, Real r2) {
-    if (j == i) return;
-    add_strain_terms(p.vel[j] - vi, rij * kernel.dw_over_r(std::sqrt(r2)), mass / p.rho[j], s);
-  });
-  return sps_stress(c, s);
-}
-
-// The SPS term of fluid particle i's acceleration, from every particle's stress tau/rho.
-[[nodiscard]] SURGE_HD inline Vec3 sps_acceleration_of(const WendlandC2& kernel, Real mass,
-                                                       const neighbour::GridView& g, const particles::ParticleView& p,
-                                                       const SymTensor* tau, int i) {
-  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  const Real wi = 1 / p.rho[i];
-  const SymTensor ti = tau[i];
-  Vec3 a{};
-  neighbour::for_each_neighbour(g, p.pos[i], kernel.support() * kernel.support(), [&](int j, const Vec3& rij, Real r2) {
-    if (j == i || p.kind[j] != fluid) return;
-    const Vec3 grad = rij * kernel.dw_over_r(std::sqrt(r2));
-    const SymTensor tj = tau[j];
-    const Real wj = 1 / p.rho[j];
-    const SymTensor sum{ti.xx * wi + tj.xx * wj, ti.yy * wi + tj.yy * wj, ti.zz * wi + tj.zz * wj,
-                        ti.xy * wi + tj.xy * wj, ti.xz * wi + tj.xz * wj, ti.yz * wi + tj.yz * wj};
-    a += sum.dot(grad) * mass;
-  });
-  return a;
+// The SPS terms of the pair (i, j) (add_pair_terms: vij = v_i - v_j, the densities and the
+// stresses tau/rho the two carry): i's strain rate from j, and where `fluid_pair` (both
+// fluid) the stress's momentum term.
+template <class T, class Mask>
+SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const Vec3T<T>& vij, T rho_i, T rho_j,
+                                         const SymTensorT<T>& tau_i, const SymTensorT<T>& tau_j, Mask fluid_pair,
+                                         SymTensorT<T>& strain, Vec3T<T>& acc) {
+  add_strain_terms(Vec3T<T>{} - vij, grad, mass / rho_j, strain);
+  const T wi = 1 / rho_i, wj = 1 / rho_j;
+  const SymTensorT<T> sum{tau_i.xx * wi + tau_j.xx * wj, tau_i.yy * wi + tau_j.yy * wj, tau_i.zz * wi + tau_j.zz * wj,
+                          tau_i.xy * wi + tau_j.xy * wj, tau_i.xz * wi + tau_j.xz * wj, tau_i.yz * wi + tau_j.yz * wj};
+  const Vec3T<T> term = sum.dot(grad) * splat<T>(mass);
+  if constexpr (std::is_same_v<T, Real>) {
+    if (fluid_pair) acc += term;
+  } else {
+    acc += pick(fluid_pair, term, Vec3T<T>{});
+  }
 }
 
 } // namespace surge::sph

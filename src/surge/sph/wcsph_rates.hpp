@@ -14,7 +14,9 @@
 //         DualSPHysics uses; SPEC §8), in place of Pi_ij:
 //         + sum_j m_j 4 nu (r_ij.grad_i W_ij) v_ij / ((rho_i+rho_j)(r^2+0.01h^2))
 //         (against a wall or body particle v_j is the wall's velocity: moving walls drag)
-// With shifting (shifting.hpp) a fluid particle also sums grad C and div r over its pairs.
+// With shifting (shifting.hpp) a fluid particle also sums grad C and div r over its pairs;
+// with laminar_sps (sps_turbulence.hpp) its strain rate, and the SPS stress's momentum term
+// from the stresses the particles carry.
 // Wall and body particles sum over fluid neighbours only (dynamic boundary particles).
 // Each particle i writes only its own rates, so results do not depend on thread order.
 #pragma once
@@ -25,13 +27,14 @@
 #include "surge/sph/eos_tait.hpp"
 #include "surge/sph/kernel_wendland_c2.hpp"
 #include "surge/sph/shifting.hpp"
+#include "surge/sph/sps_turbulence.hpp"
 
 #include <type_traits>
 
 namespace surge::sph {
 
 // The momentum equation's viscous term (sph.viscosity); LaminarSps adds the SPS stress
-// (sps_turbulence.hpp, its own passes) to the laminar term.
+// (sps_turbulence.hpp) to the laminar term.
 enum class Viscosity : std::uint8_t { Artificial, Laminar, LaminarSps };
 
 struct WcsphParams {
@@ -58,12 +61,14 @@ struct Rates {
   Real vsig = 0;
   WallChoice wall = no_wall; // fluid, with no penetration: the wall face or particle it would reach first
   ShiftSums shift;           // with shifting
+  SymTensor strain;          // laminar_sps: the strain rate (fluid)
 };
 
 // Where a rates pass stores what a particle gives beyond the view's rates (null: not wanted).
 struct RatesOut {
   WallChoice* faces = nullptr; // no penetration: each fluid particle's wall choice
   ShiftSums* shift = nullptr;  // shifting: each particle's grad C and div r
+  SymTensor* strain = nullptr; // laminar_sps: each particle's strain rate
 };
 
 // The formulas below are written once for T = Real (one pair at a time: the scalar and
@@ -80,6 +85,14 @@ struct PairSums {
   T div_r{};
 };
 
+// What laminar_sps adds to a particle's sums (add_sps_pair), held apart from PairSums so
+// that the other settings' pair loops carry none of it.
+template <class T>
+struct SpsSums {
+  SymTensorT<T> strain{};
+  Vec3T<T> acc{};
+};
+
 // Calls f(a.x, b.x) for every summed member x of two PairSums (of any lane types), the
 // shifting sums last and only with `shifting`: the batched pass adds its lanes through it.
 template <class A, class B, class F>
@@ -94,6 +107,20 @@ SURGE_HD SURGE_INLINE void for_each_sum(A& a, B& b, bool shifting, F&& f) {
   f(a.grad_c.y, b.grad_c.y);
   f(a.grad_c.z, b.grad_c.z);
   f(a.div_r, b.div_r);
+}
+
+// The same for the members of two SpsSums.
+template <class A, class B, class F>
+SURGE_HD SURGE_INLINE void for_each_sps_sum(A& a, B& b, F&& f) {
+  f(a.strain.xx, b.strain.xx);
+  f(a.strain.yy, b.strain.yy);
+  f(a.strain.zz, b.strain.zz);
+  f(a.strain.xy, b.strain.xy);
+  f(a.strain.xz, b.strain.xz);
+  f(a.strain.yz, b.strain.yz);
+  f(a.acc.x, b.acc.x);
+  f(a.acc.y, b.acc.y);
+  f(a.acc.z, b.acc.z);
 }
 
 // What the pair terms read of one particle of a pair.
@@ -172,6 +199,22 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   return out;
 }
 
+// laminar_sps: the SPS terms of the pair (i, j) (sps_turbulence.hpp), each side's velocity,
+// density and the stress it carries; `fluid_pair` as add_pair_terms' `diffuse`.
+template <class T, class Mask>
+SURGE_HD SURGE_INLINE void add_sps_pair(const WcsphParams& prm, const Vec3T<T>& rij, T r, const Vec3T<T>& vi, T rho_i,
+                                        const SymTensorT<T>& tau_i, const Vec3T<T>& vj, T rho_j,
+                                        const SymTensorT<T>& tau_j, Mask fluid_pair, SpsSums<T>& s) {
+  add_sps_terms(prm.mass, rij * prm.kernel.dw_over_r(r), vi - vj, rho_i, rho_j, tau_i, tau_j, fluid_pair, s.strain,
+                s.acc);
+}
+
+// The rates of particle i with its SPS sums added.
+SURGE_HD inline void add_sps_rates(const SpsSums<Real>& s, Rates& r) {
+  r.acc += s.acc;
+  r.strain = s.strain;
+}
+
 // Writes particle i's rates (and what `out` asks for: its wall's choice, its shifting sums).
 SURGE_HD inline void store_rates(const particles::ParticleView& p, const RatesOut& out, int i, const Rates& r) {
   p.acc[i] = r.acc;
@@ -179,6 +222,7 @@ SURGE_HD inline void store_rates(const particles::ParticleView& p, const RatesOu
   p.vsig[i] = r.vsig;
   if (out.faces) out.faces[i] = r.wall;
   if (out.shift) out.shift[i] = r.shift;
+  if (out.strain) out.strain[i] = r.strain;
 }
 
 // Offers the faces and the sphere of wall particle j (at x_i - rij, |rij| = r) to the
@@ -232,6 +276,7 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
   const bool fluid_i = p.kind[i] == fluid;
   PairSums<Real> s;
+  SpsSums<Real> sps;    // laminar_sps only
   FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
   // Boundary particles (fluid_i false) only ever see fluid j.
@@ -241,12 +286,17 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     if (fluid_i && gh.hold && p.kind[j] == wall) consider_wall(gh, p, j, xi, a.vel, rij, r, keep_off, contact);
     add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid,
                    s);
+    if (p.sps)
+      add_sps_pair(prm, rij, r, a.vel, a.rho, p.sps[i], p.vel[j], p.rho[j], p.sps[j], fluid_i && p.kind[j] == fluid,
+                   sps);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
-  return finish_rates(prm, fluid_i, s, contact.choice);
+  Rates out = finish_rates(prm, fluid_i, s, contact.choice);
+  if (p.sps) add_sps_rates(sps, out);
+  return out;
 }
 
 // Whether fluid particle i lies at the free surface: its position divergence (shifting.hpp),

@@ -197,27 +197,13 @@ void mark_surface(const WcsphParams& prm, const neighbour::GridView& g, const pa
       });
 }
 
-// The SPS stress of every particle (sps_turbulence.hpp), images' taken from the particles
-// they copy (`sources`: by id, null without images), mirrored where they are; then the SPS
-// term added to each fluid particle's acceleration.
-void add_sps(const WcsphParams& prm, const SpsParams& sps, const neighbour::GridView& g,
-             const particles::ParticleView& p, const std::uint32_t* sources, SymTensor* tau) {
-  // Images are left to the copy below.
-  par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) {
-        if (!sources || !domain::is_image(p, i)) tau[i] = sps_stress_of(sps, prm.kernel, prm.mass, g, p, i);
-      });
-  if (sources)
-    par::parallel_for(
-        p.n, SURGE_LAMBDA(int i) {
-          if (domain::is_image(p, i))
-            tau[i] = tau[sources[p.id[i]]].mirrored(static_cast<unsigned>(p.halo[i] - domain::image_flag));
-        });
+// laminar_sps: each fluid particle's stress tau/rho from the strain rate its last rates
+// pass summed (sps_turbulence.hpp); 0 for the others. Images take theirs from their
+// particles at the next refresh.
+void set_sps_stress(const SpsParams& sps, const particles::ParticleView& p, const SymTensor* strain) {
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
-  par::parallel_for_uneven(
-      p.n, SURGE_LAMBDA(int i) {
-        if (p.kind[i] == fluid) p.acc[i] += sps_acceleration_of(prm.kernel, prm.mass, g, p, tau, i);
-      });
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) { p.sps[i] = p.kind[i] == fluid ? sps_stress(sps, strain[i]) : SymTensor{}; });
 }
 
 // An axis-aligned box and its merge, for the reduction below (nvcc's extended lambdas
@@ -273,6 +259,7 @@ WcsphSolver::WcsphSolver(const SolverConfig& cfg, InitialState&& init) : WcsphSo
 WcsphSolver::WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/)
     : cfg_(with_mass(cfg, init)), boundary_(cfg_.boundary->make(init, cfg_.prm)),
       first_boundary_id_(init.first_boundary_id), dom_lo_(init.fluid_lo), dom_hi_(init.fluid_hi) {
+  store_.set_optional(cfg_.prm.viscosity == Viscosity::LaminarSps); // the SPS stress
   if (cfg.no_penetration) hold_ = WallHold(init, boundary_->ghost_offsets());
   if (!init.moving.empty()) moving_ = MovingWalls(init, boundary_->ghost_offsets() != nullptr);
   set_up_images(init);
@@ -322,6 +309,7 @@ void WcsphSolver::set_up_images(const InitialState& init) {
 
 void WcsphSolver::download(particles::HostParticles& h, bool history) const {
   store_.download(h, history);
+  if (!sps_primed_) h.sps.clear(); // no stress carried yet: whoever restores from h sets it
   if (!images_.on()) return;
   particles::keep_if(h, [&](std::size_t i) { return h.halo[i] < domain::image_flag; });
   if (!store_.distributed()) h.halo.clear();
@@ -333,7 +321,8 @@ void WcsphSolver::set_distribution(const Distribution& d) {
 }
 
 double WcsphSolver::dependency_reach() const {
-  // The SPS stress of a neighbour reads that neighbour's neighbours: one support more.
+  // laminar_sps: a run's first rates pass sets the stress from the strain rate before the
+  // pass is done again, so that stress reads its neighbours' neighbours: one support more.
   const double sps = cfg_.prm.viscosity == Viscosity::LaminarSps ? static_cast<double>(cfg_.prm.kernel.support()) : 0;
   const double per_evaluation = static_cast<double>(cfg_.prm.kernel.support()) + boundary_->extra_reach() + sps;
   return (cfg_.integrator == Integrator::Symplectic ? 2 : 1) * per_evaluation;
@@ -378,12 +367,26 @@ void WcsphSolver::rates() {
     shift_.resize(static_cast<std::size_t>(p.n));
     out.shift = shift_.data();
   }
+  if (p.sps) {
+    strain_.resize(static_cast<std::size_t>(p.n));
+    out.strain = strain_.data();
+  }
   const auto t = par::timed(par::Phase::Rates);
   detail::compute_rates(cfg_.prm, hold_.view(), g, p, out);
-  if (cfg_.prm.viscosity == Viscosity::LaminarSps) {
-    sps_.resize(static_cast<std::size_t>(p.n));
-    detail::add_sps(cfg_.prm, cfg_.sps, g, p, images_.on() ? images_.sources() : nullptr, sps_.data());
+  if (p.sps && !sps_primed_) {
+    // The particles do not carry a stress yet (a new run): the one of this state, then the
+    // rates again with it.
+    set_sps_stress();
+    images_.refresh(p);
+    detail::compute_rates(cfg_.prm, hold_.view(), g, p, out);
   }
+}
+
+void WcsphSolver::set_sps_stress() {
+  const auto p = store_.view();
+  if (!p.sps) return;
+  detail::set_sps_stress(cfg_.sps, p, strain_.data());
+  sps_primed_ = true;
 }
 
 void WcsphSolver::move_walls(const std::vector<RigidState>& states) {
@@ -395,6 +398,7 @@ void WcsphSolver::move_walls(const std::vector<RigidState>& states) {
 
 void WcsphSolver::restore(const particles::HostParticles& h, long steps) {
   store_.upload(h);
+  sps_primed_ = h.sps.size() == h.size(); // a checkpoint written before laminar_sps carried it: 0
   steps_ = steps;
   fresh_ = false;
 }
@@ -466,6 +470,7 @@ StepStats WcsphSolver::step(double dt_max) {
     const auto t = par::timed(par::Phase::Integrate);
     detail::damp(p, cfg_.damping, dt);
   }
+  set_sps_stress(); // the new state's stress: from the strain rate of this step's (last) rates
   ++steps_;
   fresh_ = false;
   if (flag_removals(s) > 0) {

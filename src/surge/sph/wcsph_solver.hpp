@@ -65,7 +65,7 @@ public:
   [[nodiscard]] long step_count() const { return steps_; }
   [[nodiscard]] std::size_t bytes() const {
     return store_.bytes() + grid_.bytes() + boundary_->bytes() + hold_.bytes() + moving_.bytes() + images_.bytes() +
-           shift_.size() * sizeof(ShiftSums) + sps_.size() * sizeof(SymTensor);
+           shift_.size() * sizeof(ShiftSums) + strain_.size() * sizeof(SymTensor);
   }
   [[nodiscard]] neighbour::GridView grid_view() {
     const particles::ParticleView v = store_.view();
@@ -104,7 +104,8 @@ private:
   WcsphSolver(const SolverConfig& cfg, const InitialState& init, Unloaded /*unused*/);
   void sort_and_rates();
   void set_up_images(const InitialState& init);
-  void rates(); // the wall model's boundary densities, EOS and rates at the current positions
+  void rates();          // the wall model's boundary densities, EOS and rates at the current positions
+  void set_sps_stress(); // laminar_sps: each particle's stress from its strain rate of the last rates
   double dt_from_rates();
   int flag_removals(StepStats& s);
 
@@ -114,13 +115,14 @@ private:
   MovingWalls moving_;                      // walls with a motion
   domain::Images images_;                   // domain.periodic and domain.symmetry
   par::Buffer<ShiftSums> shift_;            // sph.shifting: each particle's sums from the last rates
-  par::Buffer<SymTensor> sps_;              // laminar_sps: each particle's SPS stress tau/rho
+  par::Buffer<SymTensor> strain_;           // laminar_sps: each particle's strain rate from the last rates
   std::uint32_t first_boundary_id_ = 0;
   particles::ParticleStore store_;
   neighbour::UniformGrid grid_;
   Vec3 dom_lo_{}, dom_hi_{}; // where fluid may be (InitialState::fluid_lo / fluid_hi)
   Distribution dist_;
-  bool fresh_ = false; // rates match positions
+  bool fresh_ = false;      // rates match positions
+  bool sps_primed_ = false; // laminar_sps: the particles carry the stress of their state (not 0)
   long steps_ = 0;
 };
 
