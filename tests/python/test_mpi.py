@@ -3,7 +3,8 @@ bits -- gauges, every particle file, the checkpoint -- on a dam break, on the co
 slide at coarse resolution, on the reservoir from elevation grids (hazard maps included),
 on Archimedes with mDBC and the symplectic integrator, on
 the DEM-only column, on a floating box and on a block thrown onto gravel (walls that move),
-on a periodic flume with a damping zone, on a dam break with a symmetry plane (images), on
+on a periodic flume with a damping zone, on a dam break with a symmetry plane (images;
+and with laminar_sps, whose stress the particles carry, restarted on another count), on
 slabs along a periodic axis (a box periodic along every axis, a flume periodic along its
 length) and on spheres sinking on a periodic face and against their mirror image;
 a checkpoint written by 3 processes continues on 2 exactly as the straight run; bad
@@ -186,6 +187,17 @@ with open(mirror_case, "w") as f:
             .replace("open: [zmax]", "open: [zmax, xmax]"))
 mir = runs_on([1, 3], "dambreak_mirror", mirror_case, ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
 same_files(mir[1], mir[3], "dam break with a symmetry plane across the slabs, 1 and 3 processes")
+# laminar_sps: the stress each particle carries travels with it (exchanges, halo copies,
+# mirror images, checkpoints): 1 and 3 processes, and written by 3, continued by 2
+sps_sets = ["--set", "time.end=0.03", "--set", "time.output_every=0.015", "--set", "sph.viscosity=laminar_sps"]
+sps = runs_on([1, 3], "dambreak_mirror_sps", mirror_case, sps_sets)
+same_files(sps[1], sps[3], "dam break with laminar_sps and a symmetry plane, 1 and 3 processes")
+out = os.path.join(WORK, "sps_restart")
+r = mpi(3, ["run", mirror_case, "--out", out, "--quiet"] + sps_sets + ["--set", "time.end=0.015"])
+r2 = mpi(2, ["restart", out, "--quiet", "--set", "time.end=0.03"])
+check(r.returncode == 0 and r2.returncode == 0, f"laminar_sps: 3 processes to 0.015 s, 2 on to 0.03 s "
+      f"(exits {r.returncode}, {r2.returncode}: {r2.stderr[-300:]})")
+same_files(sps[1], out, "laminar_sps written by 3 processes, continued by 2, against 1 straight")
 
 # Slabs along a periodic axis (a ring): water moving uniformly through a box periodic along
 # every axis, and a flume periodic along its length (mDBC, symplectic) with a hump of water
