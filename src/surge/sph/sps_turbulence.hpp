@@ -59,8 +59,8 @@ template <class T, class Mask>
 SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const Vec3T<T>& vij, T rho_i, T rho_j,
                                          const SymTensorT<T>& tau_i, const SymTensorT<T>& tau_j, Mask fluid_pair,
                                          SymTensorT<T>& strain, Vec3T<T>& acc) {
-  add_strain_terms(Vec3T<T>{} - vij, grad, mass / rho_j, strain);
   const T wi = 1 / rho_i, wj = 1 / rho_j;
+  add_strain_terms(Vec3T<T>{} - vij, grad, mass * wj, strain); // V_j = m / rho_j
   const SymTensorT<T> sum{tau_i.xx * wi + tau_j.xx * wj, tau_i.yy * wi + tau_j.yy * wj, tau_i.zz * wi + tau_j.zz * wj,
                           tau_i.xy * wi + tau_j.xy * wj, tau_i.xz * wi + tau_j.xz * wj, tau_i.yz * wi + tau_j.yz * wj};
   const Vec3T<T> term = sum.dot(grad) * splat<T>(mass);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <immintrin.h>
 #include <limits>
+#include <new>
 #include <vector>
 
 // One copy per instruction set (par/simd_copies.inc).
