@@ -31,7 +31,7 @@ void append(std::vector<char>& out, const particles::HostParticles& h, std::size
   particles::for_each_state_field(h, h, [&](const char*, const auto& v, const auto&, unsigned use, const auto*) {
     if (!optional && (use & particles::kOptional)) return;
     typename std::decay_t<decltype(v)>::value_type x{};
-    if (i < v.size()) x = v[i];
+    if (!(use & particles::kOptional) || i < v.size()) x = v[i]; // an optional one not held: 0
     const auto at = out.size();
     out.resize(at + sizeof x);
     std::memcpy(out.data() + at, &x, sizeof x);
