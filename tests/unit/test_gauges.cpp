@@ -4,6 +4,7 @@
 // top, and a dry bed's face reads within dp/2 of the face.
 #include "test_helpers.hpp"
 
+#include "surge/coupling/body_particles.hpp"
 #include "surge/sph/gauges.hpp"
 #include "surge/sph/wcsph_solver.hpp"
 
@@ -126,4 +127,44 @@ TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
                                  obstacle + lines(9, 0.12, 0.00713));
     for (double d : dry) EXPECT_NEAR(d, 0.05, dp / 2) << "h/dp " << h;
   }
+}
+
+// A porous deposit on the floor (a slide come to rest): two layers of spheres (r = 0.02 m,
+// dp = D/4 as in the slide tsunami) on a square lattice, their body particles filling
+// about a third of the pile, with water above it (0.09-0.15 m) but none in its pores, as
+// coarse SPH water does not enter them. The column reads the water's top over the pile at
+// every offset from the lattice, not the first gap inside the pile. The same lines with
+// the spheres gone (water standing on air) read the floor, and over water 0.1 m deep
+// with a sheet 1.5 dp above it (a gap narrower than the kernel's reach) they read the
+// water: a gap without spheres in it stays an air gap.
+TEST(Gauges, ColumnReadsTheWaterOverAPorousDeposit) {
+  const double dp = 0.01, r = 0.02;
+  const int n = 9;
+  const double x0 = 0.1, dx = 0.00517;
+  for (const bool with_spheres : {true, false}) {
+    const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" + tank +
+                                          "]\n" + lines(n, x0, dx),
+                                      "deposit.yaml");
+    auto init = sph::build_initial_state(c);
+    std::vector<dem::Sphere> spheres;
+    if (with_spheres)
+      for (int layer = 0; layer < 2; ++layer)
+        for (double x = r; x < 0.3 - r / 2; x += 2 * r)
+          for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
+            dem::Sphere s;
+            s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
+            s.radius = static_cast<Real>(r);
+            spheres.push_back(s);
+          }
+    (void)coupling::add_body_particles(c, spheres, coupling::default_layers(1.2 * dp, dp), init);
+    sph::WcsphSolver s(sph::solver_config(c), init);
+    sph::Gauges g(c, init);
+    const auto v = g.sample(s);
+    for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << "line " << k;
+  }
+  const auto sheet = read_gauges(head("1.2") +
+                                 "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}, "
+                                 "{box: {min: [0,0,0.115], max: [0.3,0.1,0.135]}}]\n" +
+                                 tank + "]\n" + lines(n, x0, dx));
+  for (int k = 0; k < n; ++k) EXPECT_NEAR(sheet[k], 0.10, dp / 2) << "line " << k;
 }

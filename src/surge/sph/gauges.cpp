@@ -93,7 +93,7 @@ std::vector<PointSums> Gauges::point_sums(WcsphSolver& solver, const Distributio
   if (dist.distributed()) {
     for (std::size_t k = 0; k < sums.size(); ++k)
       if (!dist.owns(points_host_[k])) sums[k] = PointSums{};
-    dist.sum(reinterpret_cast<Real*>(sums.data()), 6 * sums.size());
+    dist.sum(reinterpret_cast<Real*>(sums.data()), kPointSumReals * sums.size());
   }
   return sums;
 }
@@ -221,9 +221,34 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
   if (k < 0) return {z(0), -1}; // dry
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
-    if (f1 < 0.5) return {crossing(z(k), dz_, f0, f1), k};
+    if (f1 >= 0.5) continue;
+    const int above = past_pores(pr, sums, k + 1);
+    if (above < 0) return {crossing(z(k), dz_, f0, f1), k};
+    k = above - 1;
   }
   return {z(pr.n_samples - 1), pr.n_samples - 1};
+}
+
+// A porous deposit (a slide come to rest, a rock pile) holds water in its pores, but
+// coarse SPH water does not enter them: the spheres' body particles fill a third to a
+// half of the pile, and the pores and the stand-off between the pile and the water above
+// read as gaps. A gap is part of the column when the column is filled again above it,
+// every sample in it is within kernel reach of water or spheres (fluid + body fraction
+// at least kNear: 0.07 between two layers of spheres beside a line through the pores) and
+// spheres are in it (a body fraction of at least kSpheres somewhere).
+// Returns that filled sample, or -1 where the gap is air: nothing above it, a stretch
+// with nothing near, or no sphere in it (spray, a sheet: read as before, and walls do
+// not count, so a line along a wall does not climb it).
+int Gauges::past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const {
+  constexpr double kNear = 0.04, kSpheres = 0.1;
+  bool spheres = false;
+  for (; k < pr.n_samples; ++k) {
+    const PointSums& s = sums[pr.first_sample + k];
+    if (static_cast<double>(s.vw + s.vw_solid) >= 0.5) return spheres ? k : -1;
+    if (static_cast<double>(s.vw + s.vw_body) < kNear) return -1;
+    spheres = spheres || static_cast<double>(s.vw_body) >= kSpheres;
+  }
+  return -1;
 }
 
 // The highest z where the fluid fraction reaches 0.5, interpolated between samples: the

@@ -12,13 +12,16 @@ namespace surge::sph {
 
 // Kernel sums at a point over fluid particles: sum V W, sum V W p, sum V W v; and
 // sum V W over wall and body particles (solid around the point: a slide's spheres under
-// the water are part of the column a wave gauge reads, not an air gap in it).
+// the water are part of the column a wave gauge reads, not an air gap in it), and over
+// body particles alone (the DEM spheres: a column's gap inside a porous deposit).
 struct PointSums {
   Real vw = 0, vwp = 0;
   Vec3 vwv{};
   Real vw_solid = 0; // walls and bodies; vw + vw_solid is the filled fraction
+  Real vw_body = 0;  // the spheres' body particles alone
 };
-static_assert(sizeof(PointSums) == 6 * sizeof(Real), "PointSums is combined across processes as 6 Reals");
+constexpr int kPointSumReals = 7;
+static_assert(sizeof(PointSums) == kPointSumReals * sizeof(Real), "PointSums is combined across processes as Reals");
 
 [[nodiscard]] SURGE_HD inline PointSums fluid_sums(const WcsphParams& prm, const neighbour::GridView& g,
                                                    const particles::ParticleView& p, const Vec3& x) {
@@ -28,6 +31,7 @@ static_assert(sizeof(PointSums) == 6 * sizeof(Real), "PointSums is combined acro
              body = static_cast<std::uint8_t>(Kind::Body);
   neighbour::for_each_neighbour(g, x, r2max, [&](int j, const Vec3&, Real r2) {
     if (p.kind[j] == wall || p.kind[j] == body) s.vw_solid += prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
+    if (p.kind[j] == body) s.vw_body += prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     if (p.kind[j] != fluid) return;
     const Real vw = prm.mass / p.rho[j] * prm.kernel.w(std::sqrt(r2));
     s.vw += vw;
@@ -97,6 +101,7 @@ private:
     int last;
   };
   [[nodiscard]] Top column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
+  [[nodiscard]] int past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const;
   [[nodiscard]] double highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const;
 };
 
