@@ -56,10 +56,11 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
         t.div_r += std::fabs(one.div_r);
         if (p.sps) {
           sph::SpsSums<Real> sps;
-          sph::add_sps_pair(prm, rij, std::sqrt(r2), a.vel, a.rho, p.sps[i], p.vel[j], p.rho[j], p.sps[j], fluid_pair,
-                            sps);
-          t.acc += norm(sps.acc);
-          t.strain += magnitude(sps.strain);
+          Vec3 acc{};
+          sph::add_sps_pair(prm, rij, std::sqrt(r2), a.vel, sph::stress_over_rho(p.sps[i], a.rho), p.vel[j], p.rho[j],
+                            p.sps[j], fluid_pair, sps, acc);
+          t.acc += norm(acc);
+          t.strain += magnitude(sph::strain_rate(sps.strain));
         }
       });
   return t;

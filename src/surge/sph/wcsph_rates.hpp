@@ -86,11 +86,11 @@ struct PairSums {
 };
 
 // What laminar_sps adds to a particle's sums (add_sps_pair), held apart from PairSums so
-// that the other settings' pair loops carry none of it.
+// that the other settings' pair loops carry none of it; its momentum term goes into
+// PairSums::acc (6 vector sums in the batched loop, not 9).
 template <class T>
 struct SpsSums {
-  SymTensorT<T> strain{};
-  Vec3T<T> acc{};
+  SymTensorT<T> strain{}; // add_strain_terms' sums (strain_rate)
 };
 
 // Calls f(a.x, b.x) for every summed member x of two PairSums (of any lane types), the
@@ -118,9 +118,6 @@ SURGE_HD SURGE_INLINE void for_each_sps_sum(A& a, B& b, F&& f) {
   f(a.strain.xy, b.strain.xy);
   f(a.strain.xz, b.strain.xz);
   f(a.strain.yz, b.strain.yz);
-  f(a.acc.x, b.acc.x);
-  f(a.acc.y, b.acc.y);
-  f(a.acc.z, b.acc.z);
 }
 
 // What the pair terms read of one particle of a pair.
@@ -199,21 +196,18 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   return out;
 }
 
-// laminar_sps: the SPS terms of the pair (i, j) (sps_turbulence.hpp), each side's velocity,
-// density and the stress it carries; `fluid_pair` as add_pair_terms' `diffuse`.
+// laminar_sps: the SPS terms of the pair (i, j) (sps_turbulence.hpp): i's velocity and its
+// side tau_i/rho_i^2 (stress_over_rho), j's velocity, density and the stress it carries;
+// `fluid_pair` as add_pair_terms' `diffuse`. The momentum term goes into acc (PairSums').
 template <class T, class Mask>
-SURGE_HD SURGE_INLINE void add_sps_pair(const WcsphParams& prm, const Vec3T<T>& rij, T r, const Vec3T<T>& vi, T rho_i,
-                                        const SymTensorT<T>& tau_i, const Vec3T<T>& vj, T rho_j,
-                                        const SymTensorT<T>& tau_j, Mask fluid_pair, SpsSums<T>& s) {
-  add_sps_terms(prm.mass, rij * prm.kernel.dw_over_r(r), vi - vj, rho_i, rho_j, tau_i, tau_j, fluid_pair, s.strain,
-                s.acc);
+SURGE_HD SURGE_INLINE void add_sps_pair(const WcsphParams& prm, const Vec3T<T>& rij, T r, const Vec3T<T>& vi,
+                                        const SymTensorT<T>& ti, const Vec3T<T>& vj, T rho_j,
+                                        const SymTensorT<T>& tau_j, Mask fluid_pair, SpsSums<T>& s, Vec3T<T>& acc) {
+  add_sps_terms(prm.mass, rij * prm.kernel.dw_over_r(r), vi - vj, rho_j, ti, tau_j, fluid_pair, s.strain, acc);
 }
 
 // The rates of particle i with its SPS sums added.
-SURGE_HD inline void add_sps_rates(const SpsSums<Real>& s, Rates& r) {
-  r.acc += s.acc;
-  r.strain = s.strain;
-}
+SURGE_HD inline void add_sps_rates(const SpsSums<Real>& s, Rates& r) { r.strain = strain_rate(s.strain); }
 
 // Writes particle i's rates (and what `out` asks for: its wall's choice, its shifting sums).
 SURGE_HD inline void store_rates(const particles::ParticleView& p, const RatesOut& out, int i, const Rates& r) {
@@ -276,7 +270,8 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
   const bool fluid_i = p.kind[i] == fluid;
   PairSums<Real> s;
-  SpsSums<Real> sps;    // laminar_sps only
+  SpsSums<Real> sps; // laminar_sps only
+  const SymTensor ti = p.sps ? stress_over_rho(p.sps[i], a.rho) : SymTensor{};
   FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
   // Boundary particles (fluid_i false) only ever see fluid j.
@@ -287,8 +282,7 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid,
                    s);
     if (p.sps)
-      add_sps_pair(prm, rij, r, a.vel, a.rho, p.sps[i], p.vel[j], p.rho[j], p.sps[j], fluid_i && p.kind[j] == fluid,
-                   sps);
+      add_sps_pair(prm, rij, r, a.vel, ti, p.vel[j], p.rho[j], p.sps[j], fluid_i && p.kind[j] == fluid, sps, s.acc);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
