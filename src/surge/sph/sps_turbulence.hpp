@@ -75,10 +75,9 @@ template <class T, class Mask>
 SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const Vec3T<T>& vij, T rho_j,
                                          const SymTensorT<T>& ti, const SymTensorT<T>& tau_j, Mask fluid_pair,
                                          SymTensorT<T>& strain, Vec3T<T>& acc) {
-  const T wj = 1 / rho_j;
-  add_strain_terms(Vec3T<T>{} - vij, grad, mass * wj, strain); // V_j = m / rho_j
-  const SymTensorT<T> sum{ti.xx + tau_j.xx * wj, ti.yy + tau_j.yy * wj, ti.zz + tau_j.zz * wj,
-                          ti.xy + tau_j.xy * wj, ti.xz + tau_j.xz * wj, ti.yz + tau_j.yz * wj};
+  add_strain_terms(Vec3T<T>{} - vij, grad, mass * (1 / rho_j), strain); // V_j = m / rho_j
+  const SymTensorT<T> tj = stress_over_rho(tau_j, rho_j);
+  const SymTensorT<T> sum{ti.xx + tj.xx, ti.yy + tj.yy, ti.zz + tj.zz, ti.xy + tj.xy, ti.xz + tj.xz, ti.yz + tj.yz};
   const Vec3T<T> term = sum.dot(grad) * splat<T>(mass);
   if constexpr (std::is_same_v<T, Real>) {
     if (fluid_pair) acc += term;
