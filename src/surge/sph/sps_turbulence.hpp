@@ -24,21 +24,9 @@ struct SpsParams {
   Real delta = 0;         // filter width D = dp
 };
 
-// The strain rate's term of the pair (i, j): vji = v_j - v_i, grad = grad_i W_ij, vol = V_j.
-// The off-diagonal sums hold 2 S (both halves of the symmetric part): strain_rate halves
-// them once per particle, which gives the same bits as halving each term (a factor 2 is
-// exact) for one multiplication per pair less.
-template <class T>
-SURGE_HD SURGE_INLINE void add_strain_terms(const Vec3T<T>& vji, const Vec3T<T>& grad, T vol, SymTensorT<T>& s) {
-  s.xx += vol * vji.x * grad.x;
-  s.yy += vol * vji.y * grad.y;
-  s.zz += vol * vji.z * grad.z;
-  s.xy += vol * (vji.x * grad.y + vji.y * grad.x);
-  s.xz += vol * (vji.x * grad.z + vji.z * grad.x);
-  s.yz += vol * (vji.y * grad.z + vji.z * grad.y);
-}
-
-// The strain rate S from the sums of add_strain_terms.
+// The strain rate S from add_sps_terms' sums. Their off-diagonals hold 2 S (both halves of
+// the symmetric part): halved here once per particle, which gives the same bits as halving
+// each term (a factor 2 is exact) for one multiplication per pair less.
 [[nodiscard]] SURGE_HD inline SymTensor strain_rate(const SymTensor& sums) {
   const Real half = Real(0.5);
   return {sums.xx, sums.yy, sums.zz, half * sums.xy, half * sums.xz, half * sums.yz};
@@ -70,20 +58,43 @@ template <class T>
 // The SPS terms of the pair (i, j) (add_pair_terms: vij = v_i - v_j): i's strain rate from
 // j, and where `fluid_pair` (both fluid) the stress's momentum term, added to acc; ti is
 // i's side tau_i/rho_i^2 (stress_over_rho, once per particle), tau_j the stress tau/rho
-// that j carries.
+// that j carries. Written for the pair loop's arithmetic, which is what laminar_sps costs:
+// m grad W once for both terms, 1/rho_j once for V_j and tau_j/rho_j^2, the strain's
+// v_j - v_i folded into the sums' signs, and the momentum term masked through its gradient.
 template <class T, class Mask>
 SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const Vec3T<T>& vij, T rho_j,
                                          const SymTensorT<T>& ti, const SymTensorT<T>& tau_j, Mask fluid_pair,
                                          SymTensorT<T>& strain, Vec3T<T>& acc) {
-  add_strain_terms(Vec3T<T>{} - vij, grad, mass * (1 / rho_j), strain); // V_j = m / rho_j
-  const SymTensorT<T> tj = stress_over_rho(tau_j, rho_j);
-  const SymTensorT<T> sum{ti.xx + tj.xx, ti.yy + tj.yy, ti.zz + tj.zz, ti.xy + tj.xy, ti.xz + tj.xz, ti.yz + tj.yz};
-  const Vec3T<T> term = sum.dot(grad) * splat<T>(mass);
+  const T inv_rho = 1 / rho_j;
+  const Vec3T<T> mgrad = grad * splat<T>(mass);
+  const Vec3T<T> vgrad = mgrad * inv_rho; // V_j grad_i W_ij, V_j = m / rho_j
+  // One fused multiply-add per product, each sum taking its products in turn.
+  strain.xx -= vij.x * vgrad.x;
+  strain.yy -= vij.y * vgrad.y;
+  strain.zz -= vij.z * vgrad.z;
+  strain.xy -= vij.x * vgrad.y;
+  strain.xy -= vij.y * vgrad.x;
+  strain.xz -= vij.x * vgrad.z;
+  strain.xz -= vij.z * vgrad.x;
+  strain.yz -= vij.y * vgrad.z;
+  strain.yz -= vij.z * vgrad.y;
+  const SymTensorT<T> sum{ti.xx + tau_j.xx * inv_rho, ti.yy + tau_j.yy * inv_rho, ti.zz + tau_j.zz * inv_rho,
+                          ti.xy + tau_j.xy * inv_rho, ti.xz + tau_j.xz * inv_rho, ti.yz + tau_j.yz * inv_rho};
+  Vec3T<T> g = mgrad;
   if constexpr (std::is_same_v<T, Real>) {
-    if (fluid_pair) acc += term;
+    if (!fluid_pair) return;
   } else {
-    acc += pick(fluid_pair, term, Vec3T<T>{});
+    g = pick(fluid_pair, mgrad, Vec3T<T>{});
   }
+  acc.x += sum.xx * g.x;
+  acc.x += sum.xy * g.y;
+  acc.x += sum.xz * g.z;
+  acc.y += sum.xy * g.x;
+  acc.y += sum.yy * g.y;
+  acc.y += sum.yz * g.z;
+  acc.z += sum.xz * g.x;
+  acc.z += sum.yz * g.y;
+  acc.z += sum.zz * g.z;
 }
 
 } // namespace surge::sph

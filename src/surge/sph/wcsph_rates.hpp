@@ -85,12 +85,12 @@ struct PairSums {
   T div_r{};
 };
 
-// What laminar_sps adds to a particle's sums (add_sps_pair), held apart from PairSums so
+// What laminar_sps adds to a particle's sums (add_pair_terms' SpsPair), held apart from PairSums so
 // that the other settings' pair loops carry none of it; its momentum term goes into
 // PairSums::acc (6 vector sums in the batched loop, not 9).
 template <class T>
 struct SpsSums {
-  SymTensorT<T> strain{}; // add_strain_terms' sums (strain_rate)
+  SymTensorT<T> strain{}; // add_sps_terms' sums (strain_rate)
 };
 
 // Calls f(a.x, b.x) for every summed member x of two PairSums (of any lane types), the
@@ -152,11 +152,24 @@ template <class T>
   return prm.mass * 4 * inv_rho_sum * (rho_j - rho_i - rho_h) * (-dot(rij, grad)) * inv_r2e;
 }
 
+// laminar_sps's side of a pair for add_pair_terms (sps_turbulence.hpp): i's side
+// tau_i/rho_i^2 (stress_over_rho, once per particle), the stress tau/rho that j carries,
+// and i's SPS sums.
+template <class T>
+struct SpsPair {
+  const SymTensorT<T>& ti;
+  const SymTensorT<T>& tau_j;
+  SpsSums<T>& sums;
+};
+
 // Adds the terms of the pairs (i, j) to s: rij = x_i - x_j, r2 = |rij|^2, r = |rij|;
-// `diffuse`: both are fluid (density diffusion acts between fluid particles only).
+// `diffuse`: both are fluid (density diffusion acts between fluid particles only); with
+// `sps` (laminar_sps, fluid i) the SPS terms of the same pairs, from the same kernel
+// gradient and velocity difference, to sps->sums and s.acc.
 template <class T, class Mask>
 SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>& rij, T r2, T r, const PairSide<T>& a,
-                                          const PairSide<T>& b, Mask diffuse, PairSums<T>& s) {
+                                          const PairSide<T>& b, Mask diffuse, PairSums<T>& s,
+                                          const SpsPair<T>* sps = nullptr) {
   const Real h = prm.kernel.h;
   const Real eta2 = Real(0.01) * h * h;
   const Vec3T<T> grad = rij * prm.kernel.dw_over_r(r);
@@ -182,6 +195,7 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   if (prm.viscosity == Viscosity::Laminar || prm.viscosity == Viscosity::LaminarSps)
     s.acc += vij * (prm.mass * 4 * prm.nu * dot(rij, grad) * inv_rho_sum * inv_r2e);
   if (prm.shift.on()) add_shift_terms(prm.shift, rij, grad, prm.mass / b.rho, prm.kernel.w(r), s.grad_c, s.div_r);
+  if (sps) add_sps_terms(prm.mass, grad, vij, b.rho, sps->ti, sps->tau_j, diffuse, sps->sums.strain, s.acc);
 }
 
 // The rates of particle i from its sums.
@@ -194,16 +208,6 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   out.wall = wall;
   out.shift = {s.grad_c, s.div_r};
   return out;
-}
-
-// laminar_sps: the SPS terms of the pair (i, j) (sps_turbulence.hpp): i's velocity and its
-// side tau_i/rho_i^2 (stress_over_rho), j's velocity, density and the stress it carries;
-// `fluid_pair` as add_pair_terms' `diffuse`. The momentum term goes into acc (PairSums').
-template <class T, class Mask>
-SURGE_HD SURGE_INLINE void add_sps_pair(const WcsphParams& prm, const Vec3T<T>& rij, T r, const Vec3T<T>& vi,
-                                        const SymTensorT<T>& ti, const Vec3T<T>& vj, T rho_j,
-                                        const SymTensorT<T>& tau_j, Mask fluid_pair, SpsSums<T>& s, Vec3T<T>& acc) {
-  add_sps_terms(prm.mass, rij * prm.kernel.dw_over_r(r), vi - vj, rho_j, ti, tau_j, fluid_pair, s.strain, acc);
 }
 
 // The rates of particle i with its SPS sums added.
@@ -270,8 +274,9 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
   const bool fluid_i = p.kind[i] == fluid;
   PairSums<Real> s;
-  SpsSums<Real> sps; // laminar_sps only
-  const SymTensor ti = p.sps ? stress_over_rho(p.sps[i], a.rho) : SymTensor{};
+  SpsSums<Real> sps; // laminar_sps only, and for fluid only: a wall carries no stress
+  const bool sps_i = p.sps && fluid_i;
+  const SymTensor ti = sps_i ? stress_over_rho(p.sps[i], a.rho) : SymTensor{};
   FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
   // Boundary particles (fluid_i false) only ever see fluid j.
@@ -279,17 +284,16 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     if (j == i) return;
     const Real r = std::sqrt(r2);
     if (fluid_i && gh.hold && p.kind[j] == wall) consider_wall(gh, p, j, xi, a.vel, rij, r, keep_off, contact);
+    const SpsPair<Real> sp{ti, sps_i ? p.sps[j] : ti, sps};
     add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid,
-                   s);
-    if (p.sps)
-      add_sps_pair(prm, rij, r, a.vel, ti, p.vel[j], p.rho[j], p.sps[j], fluid_i && p.kind[j] == fluid, sps, s.acc);
+                   s, sps_i ? &sp : nullptr);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
   Rates out = finish_rates(prm, fluid_i, s, contact.choice);
-  if (p.sps) add_sps_rates(sps, out);
+  if (sps_i) add_sps_rates(sps, out);
   return out;
 }
 
