@@ -146,16 +146,23 @@ SURGE_HD void for_each_held_face(const Vec3& xb, const Vec3& r, const WallReach&
 
 // Of the planes seen so far, the one to hold the particle at x (moving at v) off in this
 // step, dmin in front: the most violated one if any is (it was pushed past one last step
-// while another was held), else the one it would reach first at its velocity, else the
-// nearest.
+// while another was held) or one it touches, else the one it would reach first at its
+// velocity, else the nearest. Touching counts as violated: water held at a face has lost
+// its velocity into it, so that face ranks last by contact time, and water running fast
+// along a flat wall then chose the sphere of a wall particle ahead of it and was pushed
+// into the face's dmin by the step's forces (by up to 1.2 um at dp = 1 cm, every other
+// step: test_walls_hold_water with laminar viscosity, 2026-12-06).
 struct FirstContact {
   WallChoice choice = no_wall;
   int tier = 3;
   Real key = Real(1e30);
+  // A particle within this share of dmin of dmin from a plane touches it: the hold leaves
+  // it at dmin up to the rounding of its position (about 1e-7 of it in float).
+  static constexpr Real touching = Real(1e-4);
   SURGE_HD void consider(const WallPlane& w, WallChoice c, const Vec3& x, const Vec3& v, Real dmin) {
     const Real d = w.distance(x) - dmin;
     const Real vn = dot(v, w.n);
-    const int t = d < 0 ? 0 : (vn < 0 ? 1 : 2);
+    const int t = d < touching * dmin ? 0 : (vn < 0 ? 1 : 2);
     const Real k = t == 0 ? d : (t == 1 ? d / -vn : d);
     if (t < tier || (t == tier && k < key)) {
       choice = c;
