@@ -46,7 +46,7 @@ SURGE, WORK = sys.argv[1], sys.argv[2]
 LONG = "--long" in sys.argv  # also the settings that are only reported
 OPEN = "--open" in sys.argv  # also the targets not met yet (ctest label open): the standing wave's decay
 PART = sys.argv[sys.argv.index("--part") + 1] if "--part" in sys.argv else None
-# --only LABEL,...: of --long's solitary rows, only these (each takes about 40 minutes)
+# --only LABEL,...: of the solitary rows (laminar_fickian and --long's), only these (about 40 minutes each)
 ONLY = sys.argv[sys.argv.index("--only") + 1].split(",") if "--only" in sys.argv else None
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
@@ -392,7 +392,8 @@ if PART in (None, "hydrostatic"):
         hydrostatic("delta_plus", "shifting: delta_plus, shifting_coefficient: 10")
 if PART == "solitary":  # its own ctest (waves_solitary)
     print("4. solitary wave, A/h = %.1f: celerity %.4f m/s" % (SOL_A / SOL_H, SOL_C), flush=True)
-    solitary("laminar_fickian", "viscosity: laminar, shifting: fickian", True)
+    if ONLY is None or "laminar_fickian" in ONLY:
+        solitary("laminar_fickian", "viscosity: laminar, shifting: fickian", True)
     if LONG:
         for label, sph in (("laminar", "viscosity: laminar, shifting: none"),
                            ("artificial", "viscosity: artificial, shifting: none"),

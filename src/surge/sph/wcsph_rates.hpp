@@ -285,8 +285,8 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     const Real r = std::sqrt(r2);
     if (fluid_i && gh.hold && p.kind[j] == wall) consider_wall(gh, p, j, xi, a.vel, rij, r, keep_off, contact);
     const SpsPair<Real> sp{ti, sps_i ? p.sps[j] : ti, sps};
-    add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid,
-                   s, sps_i ? &sp : nullptr);
+    add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid, s,
+                   sps_i ? &sp : nullptr);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
