@@ -68,7 +68,8 @@ SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const 
   const T inv_rho = 1 / rho_j;
   const Vec3T<T> mgrad = grad * splat<T>(mass);
   const Vec3T<T> vgrad = mgrad * inv_rho; // V_j grad_i W_ij, V_j = m / rho_j
-  // One fused multiply-add per product, each sum taking its products in turn.
+  // No copy fuses multiply-adds (-ffp-contract=off): each product costs a multiplication
+  // and an addition, so each sum takes its products one at a time.
   strain.xx -= vij.x * vgrad.x;
   strain.yy -= vij.y * vgrad.y;
   strain.zz -= vij.z * vgrad.z;

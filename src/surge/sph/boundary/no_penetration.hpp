@@ -156,8 +156,8 @@ struct FirstContact {
   WallChoice choice = no_wall;
   int tier = 3;
   Real key = Real(1e30);
-  // A particle within this share of dmin of dmin from a plane touches it: the hold leaves
-  // it at dmin up to the rounding of its position (about 1e-7 of it in float).
+  // A particle less than touching * dmin beyond dmin from a plane touches it: the hold
+  // leaves it at dmin up to the rounding of its position (about 1e-7 of dmin in float).
   static constexpr Real touching = Real(1e-4);
   SURGE_HD void consider(const WallPlane& w, WallChoice c, const Vec3& x, const Vec3& v, Real dmin) {
     const Real d = w.distance(x) - dmin;
