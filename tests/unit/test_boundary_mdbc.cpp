@@ -126,7 +126,7 @@ TEST(BoundaryModels, TheSchemaListsEveryRegisteredModel) {
 
 // A case's words become the solver's typed configuration once (sph/solver_config.cpp).
 TEST(BoundaryModels, SolverConfigTypesTheCaseOnce) {
-  const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml");
+  const Case c = io::read_case_text(test::tank_case(0.01, 0.0, test::paper_scheme), "t.yaml");
   Case m = c;
   m.sph.boundary = "mdbc";
   m.sph.integrator = "symplectic";

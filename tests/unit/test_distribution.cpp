@@ -96,8 +96,8 @@ long slab_mismatches(const std::string& extra, double halo_factor, bool upper, i
 }
 
 TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeVerletDynamic) {
-  EXPECT_EQ(slab_mismatches("", 1.0, false, 12), 0);
-  EXPECT_EQ(slab_mismatches("", 1.0, true, 12), 0);
+  EXPECT_EQ(slab_mismatches(test::paper_scheme, 1.0, false, 12), 0);
+  EXPECT_EQ(slab_mismatches(test::paper_scheme, 1.0, true, 12), 0);
 }
 
 TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSymplecticMdbc) {
@@ -109,14 +109,15 @@ TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSymplecticMdbc
 TEST(Distribution, SlabWithHaloOfTheReachAdvancesExactlyAsTheWholeSpsAndShifting) {
   // The SPS stress is carried from step to step; a run's first pass sets it first and so
   // reads the neighbours' neighbours: the reach doubles (two supports).
-  const std::string extra = "sph: {viscosity: laminar_sps, shifting: fickian}\n";
+  const std::string extra = "sph: {boundary: dynamic, viscosity: laminar_sps, shifting: fickian}\n";
   EXPECT_EQ(slab_mismatches(extra, 1.0, false, 10), 0);
   EXPECT_EQ(slab_mismatches(extra, 1.0, true, 10), 0);
   // Starting from rest the first stress is 0 wherever it is set: after it a step reads one
   // support (on this lattice 0.8 of it holds every neighbour too); half a support is too thin.
   EXPECT_GT(slab_mismatches(extra, 0.25, false, 4), 0);
   // The symplectic scheme's two evaluations with mDBC's ghosts: the stress set once a step.
-  const std::string symplectic = "sph: {viscosity: laminar_sps, boundary: mdbc, integrator: symplectic}\n";
+  const std::string symplectic =
+      "sph: {viscosity: laminar_sps, shifting: none, boundary: mdbc, integrator: symplectic}\n";
   EXPECT_EQ(slab_mismatches(symplectic, 1.0, false, 6), 0);
   EXPECT_EQ(slab_mismatches(symplectic, 1.0, true, 6), 0);
 }
@@ -126,19 +127,19 @@ TEST(Distribution, TooThinAHaloChangesTheResult) {
   // neighbours and come out different. (With mDBC the reach is a bound: it takes the
   // longest ghost offset, a corner particle's, for every particle; a tenth of it, about
   // one kernel support, is too thin for the symplectic scheme's two evaluations.)
-  EXPECT_GT(slab_mismatches("", 0.5, false, 4), 0);
+  EXPECT_GT(slab_mismatches(test::paper_scheme, 0.5, false, 4), 0);
   EXPECT_GT(slab_mismatches("sph: {boundary: mdbc, integrator: symplectic}\n", 0.1, true, 4), 0);
 }
 
 TEST(Distribution, ReachCountsEvaluationsAndGhosts) {
-  const Case dyn = io::read_case_text(test::tank_case(0.01), "tank.yaml");
+  const Case dyn = io::read_case_text(test::tank_case(0.01, 0.0, test::paper_scheme), "tank.yaml");
   const sph::WcsphSolver a(sph::solver_config(dyn), sph::build_initial_state(dyn));
   const double support = a.params().kernel.support();
   EXPECT_DOUBLE_EQ(a.dependency_reach(), support);
-  const Case sym = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {integrator: symplectic}\n"), "tank.yaml");
+  const Case sym = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, integrator: symplectic}\n"), "tank.yaml");
   const sph::WcsphSolver b(sph::solver_config(sym), sph::build_initial_state(sym));
   EXPECT_DOUBLE_EQ(b.dependency_reach(), 2 * support);
-  const Case sps = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {viscosity: laminar_sps}\n"), "tank.yaml");
+  const Case sps = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, viscosity: laminar_sps}\n"), "tank.yaml");
   const sph::WcsphSolver t(sph::solver_config(sps), sph::build_initial_state(sps));
   EXPECT_DOUBLE_EQ(t.dependency_reach(), 2 * support);
   const Case md = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: mdbc}\n"), "tank.yaml");

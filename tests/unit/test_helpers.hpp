@@ -30,6 +30,10 @@ inline std::string write_slope(double z0, double slope) {
   return path.string();
 }
 
+// The paper's scheme, which tests of the dynamic boundary name (the defaults are mDBC,
+// laminar viscosity and fickian shifting since issue 35).
+inline const std::string paper_scheme = "sph: {boundary: dynamic, viscosity: artificial, shifting: none}\n";
+
 // A closed tank holding a water block; `shift` translates the whole case.
 inline std::string tank_case(double dp, double shift = 0.0, const std::string& extra = "") {
   auto v = [&](double x, double y, double z) {

@@ -909,6 +909,16 @@ void parse_section(const Reader& r, const YAML::Node& root, const std::string& k
   read_fields(r, n, key, fields, s);
 }
 
+// alpha is the artificial viscosity's coefficient, and the default viscosity is laminar
+// (since issue 35): a case written for the paper's scheme that sets alpha and leaves the
+// viscosity out would run with another viscosity than its author meant, so it must name it.
+void check_alpha_has_its_viscosity(const Reader& r, const YAML::Node& sph) {
+  if (!sph.IsDefined() || !sph["alpha"].IsDefined() || sph["viscosity"].IsDefined()) return;
+  r.fail(sph["alpha"], "sph.alpha",
+         "is the artificial viscosity's coefficient, and the default viscosity is laminar: add sph.viscosity: "
+         "artificial (the paper's scheme), or remove alpha");
+}
+
 Case parse(const YAML::Node& root, Reader& r) {
   Case c;
   if (!root.IsMap()) r.fail(root, "", "the case file must be a mapping of keys (name, dp, time, ...)");
@@ -926,6 +936,7 @@ Case parse(const YAML::Node& root, Reader& r) {
   if (!root["domain"].IsDefined()) r.fail(root, "domain", "is required");
   c.domain = parse_box(r, root["domain"], "domain", keys_under("domain"));
   parse_section(r, root, "sph", sph_fields(), c.sph);
+  check_alpha_has_its_viscosity(r, root["sph"]);
   parse_periodic(r, root["domain"], c);
   parse_symmetry(r, root["domain"], c);
   for_each_item(r, root, "fluid", "expected a list of regions, like [{box: {min: [..], max: [..]}}]",

@@ -84,9 +84,9 @@ std::vector<Field<SphConfig>> sph_model_fields() {
        "",
        {},
        {"artificial", "laminar", "laminar_sps"},
-       "momentum's viscous term: artificial (Monaghan's, coefficient alpha), laminar (Morris et al. 1997, the "
-       "water's kinematic viscosity nu; walls drag with their own velocity) or laminar_sps (laminar plus the "
-       "sub-particle-scale stress of Dalrymple & Rogers 2006, filter width dp)"},
+       "momentum's viscous term: artificial (the paper's: Monaghan's, coefficient alpha), laminar (Morris et al. "
+       "1997, the water's kinematic viscosity nu; walls drag with their own velocity) or laminar_sps (laminar plus "
+       "the sub-particle-scale stress of Dalrymple & Rogers 2006, filter width dp)"},
       {"nu", &S::nu, "m^2/s", non_negative(), {}, "kinematic viscosity of the water (laminar, laminar_sps)"},
       {"sps_smagorinsky", &S::sps_smagorinsky, "-", non_negative(), {}, "laminar_sps: Smagorinsky constant C_s"},
       {"sps_blin", &S::sps_blin, "-", non_negative(), {}, "laminar_sps: Blin constant C_I"},
@@ -95,7 +95,7 @@ std::vector<Field<SphConfig>> sph_model_fields() {
        "",
        {},
        {"none", "fickian", "delta_plus"},
-       "particle shifting: none; fickian (Lind et al. 2012: each fluid particle moved down the gradient of the "
+       "particle shifting: none (the paper's); fickian (Lind et al. 2012: each fluid particle moved down the gradient of the "
        "particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et al. "
        "2017: A h (Ma c0) dt, each pair weighted against clumping)"},
       {"shifting_coefficient",
@@ -196,7 +196,7 @@ const std::vector<Field<SphConfig>>& sph_fields() {
   static const std::vector<Field<S>> f = [] {
     std::vector<Field<S>> rows{
         {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
-        {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2)"},
+        {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2); a case that sets it names sph.viscosity"},
     };
     for (auto&& part : {sph_model_fields(), sph_scheme_fields()}) rows.insert(rows.end(), part.begin(), part.end());
     return rows;
