@@ -53,9 +53,9 @@ TEST(CaseReader, DefaultsFromSpec) {
 }
 
 TEST(CaseReader, OverridesAndRoundTrip) {
-  const Case c = io::read_case_text(test::tank_case(0.01), "t.yaml",
-                                    {"dp=0.02", "time.end=0.5", "sph.viscosity=artificial", "sph.alpha=0.05",
-                                     "fluid.0.velocity=[1,0,0]"});
+  const Case c = io::read_case_text(
+      test::tank_case(0.01), "t.yaml",
+      {"dp=0.02", "time.end=0.5", "sph.viscosity=artificial", "sph.alpha=0.05", "fluid.0.velocity=[1,0,0]"});
   EXPECT_DOUBLE_EQ(c.dp, 0.02);
   EXPECT_DOUBLE_EQ(c.time.end, 0.5);
   EXPECT_DOUBLE_EQ(c.sph.alpha, 0.05);
@@ -221,7 +221,8 @@ TEST(CaseSchema, EveryRangeAndChoiceIsCheckedWithTheKeyNamed) {
   expect_schema_checks(test::tank_case(0.01), "walls.0.", "walls[].", io::wall_fields());
   expect_schema_checks(test::hydrostatic_tank_case(), "gauges.1.", "gauges[].", io::gauge_fields());
   // A value on the closed end of a range is allowed (dem.dt_factor = 0.5, sph.alpha = 0).
-  EXPECT_NO_THROW((void)io::read_case_text(dem_case, "ok.yaml", {"dem.dt_factor=0.5", "sph.viscosity=artificial", "sph.alpha=0"}));
+  EXPECT_NO_THROW(
+      (void)io::read_case_text(dem_case, "ok.yaml", {"dem.dt_factor=0.5", "sph.viscosity=artificial", "sph.alpha=0"}));
 }
 
 // The allowed-key lists of the reader come from the schema: an unknown key is rejected

@@ -136,10 +136,12 @@ TEST(Distribution, ReachCountsEvaluationsAndGhosts) {
   const sph::WcsphSolver a(sph::solver_config(dyn), sph::build_initial_state(dyn));
   const double support = a.params().kernel.support();
   EXPECT_DOUBLE_EQ(a.dependency_reach(), support);
-  const Case sym = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, integrator: symplectic}\n"), "tank.yaml");
+  const Case sym =
+      io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, integrator: symplectic}\n"), "tank.yaml");
   const sph::WcsphSolver b(sph::solver_config(sym), sph::build_initial_state(sym));
   EXPECT_DOUBLE_EQ(b.dependency_reach(), 2 * support);
-  const Case sps = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, viscosity: laminar_sps}\n"), "tank.yaml");
+  const Case sps =
+      io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: dynamic, viscosity: laminar_sps}\n"), "tank.yaml");
   const sph::WcsphSolver t(sph::solver_config(sps), sph::build_initial_state(sps));
   EXPECT_DOUBLE_EQ(t.dependency_reach(), 2 * support);
   const Case md = io::read_case_text(test::tank_case(0.01, 0.0, "sph: {boundary: mdbc}\n"), "tank.yaml");

@@ -37,13 +37,13 @@ struct SphConfig {
   // The defaults are the settings docs/validation.md recommends for waves (mdbc, laminar,
   // fickian); the paper's scheme is dynamic, artificial, none, which its cases name.
   std::string viscosity = "laminar"; // artificial (SPEC 2.4) | laminar (SPEC 8, Morris et al. 1997) | laminar_sps
-  double nu = 1.0e-6;                   // kinematic viscosity [m^2/s] (laminar)
-  double sps_smagorinsky = 0.12;        // laminar_sps: C_s (Dalrymple & Rogers 2006)
-  double sps_blin = 0.0066;             // laminar_sps: C_I
-  std::string shifting = "fickian";     // none | fickian (SPEC 8, Lind et al. 2012) | delta_plus
-  double shifting_coefficient = 2.0;    // A
-  double shifting_mach = 0.1;           // delta_plus: the flow's Mach number (speed in D: Ma c0)
-  double free_surface = 2.75;           // position divergence below which a particle is at the surface
+  double nu = 1.0e-6;                // kinematic viscosity [m^2/s] (laminar)
+  double sps_smagorinsky = 0.12;     // laminar_sps: C_s (Dalrymple & Rogers 2006)
+  double sps_blin = 0.0066;          // laminar_sps: C_I
+  std::string shifting = "fickian";  // none | fickian (SPEC 8, Lind et al. 2012) | delta_plus
+  double shifting_coefficient = 2.0; // A
+  double shifting_mach = 0.1;        // delta_plus: the flow's Mach number (speed in D: Ma c0)
+  double free_surface = 2.75;        // position divergence below which a particle is at the surface
   double delta = 0.1;
   double eta = 20.0;
   double cfl = 0.2;

@@ -95,7 +95,8 @@ std::vector<Field<SphConfig>> sph_model_fields() {
        "",
        {},
        {"none", "fickian", "delta_plus"},
-       "particle shifting: none (the paper's); fickian (Lind et al. 2012: each fluid particle moved down the gradient of the "
+       "particle shifting: none (the paper's); fickian (Lind et al. 2012: each fluid particle moved down the gradient "
+       "of the "
        "particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et al. "
        "2017: A h (Ma c0) dt, each pair weighted against clumping)"},
       {"shifting_coefficient",
@@ -196,7 +197,12 @@ const std::vector<Field<SphConfig>>& sph_fields() {
   static const std::vector<Field<S>> f = [] {
     std::vector<Field<S>> rows{
         {"h_over_dp", &S::h_over_dp, "-", positive(), {}, "smoothing length h over dp (SPEC 2.1)"},
-        {"alpha", &S::alpha, "-", non_negative(), {}, "artificial viscosity coefficient (SPEC 2.2); a case that sets it names sph.viscosity"},
+        {"alpha",
+         &S::alpha,
+         "-",
+         non_negative(),
+         {},
+         "artificial viscosity coefficient (SPEC 2.2); a case that sets it names sph.viscosity"},
     };
     for (auto&& part : {sph_model_fields(), sph_scheme_fields()}) rows.insert(rows.end(), part.begin(), part.end());
     return rows;
