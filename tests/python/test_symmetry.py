@@ -16,7 +16,10 @@ either way.) The half holds half
 the water and loses none. Part 2: two spheres touching on the plane, sinking, whole and as
 a half whose sphere meets its mirror image (DEM) in its mirrored water (coupling). Also:
 the half without the mirror (the face left open, no images) fails these checks (--broken
-runs it to show the test can fail).
+runs it to show the test can fail). Part 1 runs the paper's scheme (dynamic, artificial,
+none), whose round-off grows slowly enough for the checks after 0.1 s; the defaults
+(mDBC, laminar, fickian) amplify it faster (about 30 times by 0.25 s), so they are held to
+round-off (0.01 %) over 0-0.1 s.
 
 usage: test_symmetry.py SURGE WORKDIR CASES [--broken]"""
 import json
@@ -59,6 +62,24 @@ half = (base.replace("max: [0.584, 0.1, 0.6]}", "max: [0.584, 0.05, 0.6], symmet
 if BROKEN:
     half = half.replace(", symmetry: [ymax]", "")
 assert half != base and "0.1, 0.292" not in half
+# The checks below, over 0.25-0.4 s, hold the round-off that has grown by then; that growth
+# depends on the scheme: a whole run with gravity changed by 1e-7 departs from the straight
+# one by 1.8 Pa rms under the column over 0-0.25 s with the paper's scheme and 46 Pa with
+# the defaults (mDBC, laminar, fickian: far less dissipation than the artificial viscosity),
+# as the half departs from the whole by 3.0 and 88 Pa. So the long checks run the paper's
+# scheme, and the defaults are held to round-off over 0-0.1 s, where both agree to 0.06 Pa.
+PAPER = "sph: {boundary: dynamic, viscosity: artificial, shifting: none}\n"
+early = "time: {end: 0.1,"
+for name, text in (("whole_defaults", base), ("half_defaults", half)):
+    assert "time: {end: 0.4," in text
+    run(name, text.replace("time: {end: 0.4,", early))
+wd = np.genfromtxt(os.path.join(WORK, "whole_defaults", "gauges.csv"), delimiter=",", names=True)
+hd = np.genfromtxt(os.path.join(WORK, "half_defaults", "gauges.csv"), delimiter=",", names=True)
+for name in ("H_column", "P_column"):  # the front reaches H_mid after 0.1 s
+    rms, peak = np.sqrt(np.mean((wd[name] - hd[name]) ** 2)), np.abs(wd[name]).max()
+    check(rms <= 1e-4 * peak, f"defaults, {name}, 0-0.1 s: rms difference {rms:.3g} within 0.01 % of its largest "
+          f"value {peak:.4g} ({100 * rms / peak:.4f} %)")
+base, half = (x.replace("fluid:", PAPER + "fluid:", 1) for x in (base, half))
 whole_out = run("whole", base)
 half_out = run("half", half)
 w = np.genfromtxt(os.path.join(whole_out, "gauges.csv"), delimiter=",", names=True)
