@@ -113,6 +113,7 @@ private:
   void cuts_from(const std::vector<double>& hist);
   // cuts_ changed: the execution-space copy follows (once per change, not per exchange).
   void cuts_changed();
+  void keep_ring_ends();
   // Appends to `out[r]` the records of the particles of `h` within reach of slab r != this one.
   void halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const;
   [[nodiscard]] SlabView host_view() const;
