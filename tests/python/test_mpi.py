@@ -183,8 +183,9 @@ mirror_case = os.path.join(WORK, "dambreak_mirror.yaml")
 with open(os.path.join(CASES, "demo_dambreak.yaml")) as f:
     text = f.read()
 with open(mirror_case, "w") as f:
-    f.write(text.replace("max: [0.584, 0.1, 0.6]}", "max: [0.584, 0.1, 0.6], symmetry: [xmax]}")
+    f.write(text.replace("max: [0.584, 0.1, 1.0]}", "max: [0.584, 0.1, 1.0], symmetry: [xmax]}")
             .replace("open: [zmax]", "open: [zmax, xmax]"))
+assert "symmetry: [xmax]" in open(mirror_case).read()
 mir = runs_on([1, 3], "dambreak_mirror", mirror_case, ["--set", "time.end=0.03", "--set", "time.output_every=0.015"])
 same_files(mir[1], mir[3], "dam break with a symmetry plane across the slabs, 1 and 3 processes")
 # laminar_sps: the stress each particle carries travels with it (exchanges, halo copies,
