@@ -106,11 +106,10 @@ void SlabDecomposition::cuts_changed() {
 }
 
 // In a ring only the first and last slabs take copies across the periodic faces (SlabView::
-// needs): a middle slab whose reach crossed a face would miss the neighbours there. On 3
-// processes along 0.1 m with a reach of 0.048 m (fickian shifting's two supports) the middle
-// slab's did, and its results changed from run to run. So the end slabs are kept at least a
-// reach wide (rounded up to whole bins); the middle ones may be thin or empty, as on an
-// open axis, where the halo walks past thin slabs.
+// needs): a middle slab whose reach crossed a face would miss the neighbours there (3
+// processes along 0.1 m with fickian shifting's reach of 0.048 m gave results that changed
+// from run to run). So the end slabs are kept at least a reach wide, in whole bins; the
+// middle ones may be thin or empty, as on an open axis, where the halo walks past them.
 void SlabDecomposition::keep_ring_ends() {
   const int p = comm::size();
   if (!ring_ || p < 3) return;

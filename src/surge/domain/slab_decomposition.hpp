@@ -111,8 +111,10 @@ private:
   [[nodiscard]] std::vector<double> histogram(std::size_t n, X x, W weight) const;
   bool rebalance(const std::vector<Real>& x, const std::vector<std::uint8_t>& state, const Balance& b);
   void cuts_from(const std::vector<double>& hist);
-  // cuts_ changed: the execution-space copy follows (once per change, not per exchange).
+  // cuts_ chosen: held to the ring's rule (keep_ring_ends), then the execution-space copy
+  // follows (once per change, not per exchange).
   void cuts_changed();
+  // On a periodic axis with 3 or more slabs: the end slabs at least a reach wide.
   void keep_ring_ends();
   // Appends to `out[r]` the records of the particles of `h` within reach of slab r != this one.
   void halo_records(const particles::HostParticles& h, std::vector<std::vector<char>>& out) const;

@@ -96,9 +96,8 @@ std::vector<Field<SphConfig>> sph_model_fields() {
        {},
        {"none", "fickian", "delta_plus"},
        "particle shifting: none (the paper's); fickian (Lind et al. 2012: each fluid particle moved down the gradient "
-       "of the "
-       "particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et al. "
-       "2017: A h (Ma c0) dt, each pair weighted against clumping)"},
+       "of the particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et "
+       "al. 2017: A h (Ma c0) dt, each pair weighted against clumping)"},
       {"shifting_coefficient",
        &S::shifting_coefficient,
        "-",
