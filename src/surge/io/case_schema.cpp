@@ -97,7 +97,8 @@ std::vector<Field<SphConfig>> sph_model_fields() {
        {"none", "fickian", "delta_plus"},
        "particle shifting: none (the paper's); fickian (Lind et al. 2012: each fluid particle moved down the gradient "
        "of the particle concentration, A h |u| dt grad C, fading to nothing at the free surface); delta_plus (Sun et "
-       "al. 2017: A h (Ma c0) dt, each pair weighted against clumping)"},
+       "al. 2017: A h (Ma c0) dt, each pair weighted against clumping; for water without a free surface, which it "
+       "lifts)"},
       {"shifting_coefficient",
        &S::shifting_coefficient,
        "-",

@@ -118,6 +118,11 @@ int check_warnings(const Case& c, const sph::InitialState& init, const CoupledPa
            " for loose spheres (not touching): the paper's guidance is dp <= D/20; coarser runs overestimate buoyancy "
            "and drag (gap effect)");
   }
+  // delta_plus shifts at Ma c0 whether the water moves or not, and lacks the free surface's
+  // normal that Sun et al. project its shift on (docs/validation.md, still water).
+  if (c.sph.shifting == "delta_plus" && !c.fluid.empty() && c.g() > 0)
+    warn("shifting: delta_plus under gravity: at a free surface it lifts the water (still water 0.2 m deep rose 13.7 "
+         "mm in 2 s); use fickian for water with a free surface");
   if (c.sph.eta < 10) warn("eta < 10: the Mach number may exceed 0.1 and the water compress noticeably");
   if (const std::string w = cfl_warning(c); !w.empty()) warn(w);
   return warnings;
