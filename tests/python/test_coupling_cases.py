@@ -160,6 +160,10 @@ check(r.returncode == 0 and "D/20" not in r.stdout, "floating sphere at D/20: no
 r = run(["check", os.path.join(CASES, "slide_tsunami.yaml")])
 check(r.returncode == 0 and "dense assembly" in r.stdout and "D/6" in r.stdout, "slide at D/4 warns: dense wants D/6")
 check("spheres     522" in r.stdout, "slide: 522 spheres")
+check("gap at the spheres raises the slide's wave" in r.stdout, "slide with the dynamic boundary: the gap is named")
+r = run(["check", os.path.join(CASES, "slide_tsunami.yaml"), "--set", "sph.boundary=mdbc"])
+check(r.returncode == 0 and "dense assembly" in r.stdout and "gap at the spheres" not in r.stdout,
+      "slide with mdbc: the resolution warning without the gap")
 
 # --- a sphere gauge naming a sphere that does not exist: exit 2, message with the line,
 # nothing written
