@@ -162,6 +162,33 @@ TEST(Gauges, ColumnReadsTheWaterOverAPorousDeposit) {
     const auto v = g.sample(s);
     for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << "line " << k;
   }
+  // The pile resting on a bed that reads below half filled (here: no floor wall, the line
+  // starting at the domain's bottom), as the slide tsunami's deposit did at the slope's toe
+  // with the dynamic boundary: the spheres fill the gap from the bed up to the water, and
+  // the column reads the water's top, not a dry bed. Without the spheres: dry.
+  for (const bool with_spheres : {true, false}) {
+    const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" +
+                                          "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: "
+                                          "[zmin, zmax]}]\n" +
+                                          lines(n, x0, dx),
+                                      "deposit_no_floor.yaml");
+    auto init = sph::build_initial_state(c);
+    std::vector<dem::Sphere> spheres;
+    if (with_spheres)
+      for (int layer = 0; layer < 2; ++layer)
+        for (double x = r; x < 0.3 - r / 2; x += 2 * r)
+          for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
+            dem::Sphere s;
+            s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
+            s.radius = static_cast<Real>(r);
+            spheres.push_back(s);
+          }
+    (void)coupling::add_body_particles(c, spheres, coupling::default_layers(1.2 * dp, dp), init);
+    sph::WcsphSolver s(sph::solver_config(c), init);
+    sph::Gauges g(c, init);
+    const auto v = g.sample(s);
+    for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << "no floor, line " << k;
+  }
   const auto sheet = read_gauges(head("1.2") +
                                  "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}, "
                                  "{box: {min: [0,0,0.115], max: [0.3,0.1,0.135]}}]\n" +

@@ -208,7 +208,9 @@ double Gauges::body_value(WcsphSolver& solver, const Probe& pr, const Distributi
 // Within 1.5 spacings of the face a fraction under 0.5 is not an air gap: the fraction at
 // the face itself comes out anywhere from 0.45 to 0.55 (a coarse wall, a sloping mesh),
 // and water on the bed stands off it by up to 1.5 spacings (the lattice next to a slope,
-// the dynamic boundary's gap). The column starts at the highest filled sample there.
+// the dynamic boundary's gap). The column starts at the highest filled sample there; where
+// there is none, spheres on the bed (a deposit held off by the water's stand-off) may fill
+// the gap up to the water above them (past_pores).
 Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& sums) const {
   const auto filled = [&](int k) {
     const PointSums& s = sums[pr.first_sample + k];
@@ -218,7 +220,8 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
   const int near_face = 6; // samples within 1.5 dp of the face (dz = dp / 4)
   int k = std::min(pr.n_samples - 1, near_face);
   while (k >= 0 && filled(k) < 0.5) --k;
-  if (k < 0) return {z(0), -1}; // dry
+  if (k < 0) k = past_pores(pr, sums, first_near(pr, sums, near_face)); // spheres on the bed, water above
+  if (k < 0) return {z(0), -1};                                         // dry
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
     if (f1 >= 0.5) continue;
@@ -239,14 +242,29 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
 // Returns that filled sample, or -1 where the gap is air: nothing above it, a stretch
 // with nothing near, or no sphere in it (spray, a sheet: read as before, and walls do
 // not count, so a line along a wall does not climb it).
+namespace {
+constexpr double kNear = 0.04, kSpheres = 0.1;
+} // namespace
+
 int Gauges::past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const {
-  constexpr double kNear = 0.04, kSpheres = 0.1;
+  if (k < 0) return -1;
   bool spheres = false;
   for (; k < pr.n_samples; ++k) {
     const PointSums& s = sums[pr.first_sample + k];
     if (static_cast<double>(s.vw + s.vw_solid) >= 0.5) return spheres ? k : -1;
     if (static_cast<double>(s.vw + s.vw_body) < kNear) return -1;
     spheres = spheres || static_cast<double>(s.vw_body) >= kSpheres;
+  }
+  return -1;
+}
+
+// The first of the samples within `near_face` of the bed's face with water or spheres
+// within kernel reach (where spheres touch the bed only at points, the line between
+// them starts empty); -1 if none.
+int Gauges::first_near(const Probe& pr, const std::vector<PointSums>& sums, int near_face) const {
+  for (int k = 0; k <= near_face && k < pr.n_samples; ++k) {
+    const PointSums& s = sums[pr.first_sample + k];
+    if (static_cast<double>(s.vw + s.vw_body) >= kNear) return k;
   }
   return -1;
 }

@@ -102,6 +102,7 @@ private:
   };
   [[nodiscard]] Top column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
   [[nodiscard]] int past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const;
+  [[nodiscard]] int first_near(const Probe& pr, const std::vector<PointSums>& sums, int near_face) const;
   [[nodiscard]] double highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const;
 };
 
