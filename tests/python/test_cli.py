@@ -115,11 +115,11 @@ check(r.returncode == 2 and "--set" in r.stderr, "--set typo is rejected and att
 r = run(["check", os.path.join(WORK, "good.yaml")])
 check(r.returncode == 0 and "fluid" in r.stdout and "first dt" in r.stdout and "run time" in r.stdout, "check prints counts, dt, run time")
 check("0.002 m^3 placed of 0.002 m^3" in r.stdout and "100.0 %" in r.stdout, "check reports the water placed (whole spacings)")
-# A box 0.11 m wide at dp = 0.02 holds its own volume (6 layers of 0.0183 m, the mass from it) ...
 check("delta_plus" not in r.stdout, "no shifting warning with the default fickian shifting")
 r = run(["check", os.path.join(WORK, "good.yaml"), "--set", "sph.shifting=delta_plus"])
 check(r.returncode == 0 and "delta_plus under gravity: at a free surface it lifts the water" in r.stdout,
       "check warns that delta_plus shifting lifts a free surface")
+# A box 0.11 m wide at dp = 0.02 holds its own volume (6 layers of 0.0183 m, the mass from it) ...
 r = run(["check", os.path.join(WORK, "good.yaml"), "--set", "fluid.0.box.max=[0.11,0.1,0.2]"])
 check(r.returncode == 0 and "0.0022 m^3 placed of 0.0022 m^3" in r.stdout and "100.0 %" in r.stdout
       and "not whole numbers of dp" not in r.stdout, "check reports the exact fill of a box of 5.5 dp")

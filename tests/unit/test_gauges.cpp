@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 using namespace surge;
 
@@ -129,6 +130,35 @@ TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
   }
 }
 
+namespace {
+
+// The column readings of n lines from x0 in steps of dx over water 0.085-0.15 m in the
+// tank `walls`, with (or without) a deposit of two layers of spheres of radius r on the
+// bed, their body particles at dp as the coupling places them.
+std::vector<double> read_over_deposit(const std::string& walls, bool with_spheres, int n, double x0, double dx) {
+  const double dp = 0.01, r = 0.02;
+  const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" + walls +
+                                        lines(n, x0, dx),
+                                    "deposit.yaml");
+  auto init = sph::build_initial_state(c);
+  std::vector<dem::Sphere> spheres;
+  if (with_spheres)
+    for (int layer = 0; layer < 2; ++layer)
+      for (double x = r; x < 0.3 - r / 2; x += 2 * r)
+        for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
+          dem::Sphere s;
+          s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
+          s.radius = static_cast<Real>(r);
+          spheres.push_back(s);
+        }
+  (void)coupling::add_body_particles(c, spheres, coupling::default_layers(1.2 * dp, dp), init);
+  sph::WcsphSolver s(sph::solver_config(c), init);
+  sph::Gauges g(c, init);
+  return g.sample(s);
+}
+
+} // namespace
+
 // A porous deposit on the floor (a slide come to rest): two layers of spheres (r = 0.02 m,
 // dp = D/4 as in the slide tsunami) on a square lattice, their body particles filling
 // about a third of the pile, with water above it (0.09-0.15 m) but none in its pores, as
@@ -138,57 +168,22 @@ TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
 // with a sheet 1.5 dp above it (a gap narrower than the kernel's reach) they read the
 // water: a gap without spheres in it stays an air gap.
 TEST(Gauges, ColumnReadsTheWaterOverAPorousDeposit) {
-  const double dp = 0.01, r = 0.02;
+  const double dp = 0.01;
   const int n = 9;
   const double x0 = 0.1, dx = 0.00517;
-  for (const bool with_spheres : {true, false}) {
-    const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" + tank +
-                                          "]\n" + lines(n, x0, dx),
-                                      "deposit.yaml");
-    auto init = sph::build_initial_state(c);
-    std::vector<dem::Sphere> spheres;
-    if (with_spheres)
-      for (int layer = 0; layer < 2; ++layer)
-        for (double x = r; x < 0.3 - r / 2; x += 2 * r)
-          for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
-            dem::Sphere s;
-            s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
-            s.radius = static_cast<Real>(r);
-            spheres.push_back(s);
-          }
-    (void)coupling::add_body_particles(c, spheres, coupling::default_layers(1.2 * dp, dp), init);
-    sph::WcsphSolver s(sph::solver_config(c), init);
-    sph::Gauges g(c, init);
-    const auto v = g.sample(s);
-    for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << "line " << k;
-  }
-  // The pile resting on a bed that reads below half filled (here: no floor wall, the line
-  // starting at the domain's bottom), as the slide tsunami's deposit did at the slope's toe
-  // with the dynamic boundary: the spheres fill the gap from the bed up to the water, and
-  // the column reads the water's top, not a dry bed. Without the spheres: dry.
-  for (const bool with_spheres : {true, false}) {
-    const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" +
-                                          "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: "
-                                          "[zmin, zmax]}]\n" +
-                                          lines(n, x0, dx),
-                                      "deposit_no_floor.yaml");
-    auto init = sph::build_initial_state(c);
-    std::vector<dem::Sphere> spheres;
-    if (with_spheres)
-      for (int layer = 0; layer < 2; ++layer)
-        for (double x = r; x < 0.3 - r / 2; x += 2 * r)
-          for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
-            dem::Sphere s;
-            s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
-            s.radius = static_cast<Real>(r);
-            spheres.push_back(s);
-          }
-    (void)coupling::add_body_particles(c, spheres, coupling::default_layers(1.2 * dp, dp), init);
-    sph::WcsphSolver s(sph::solver_config(c), init);
-    sph::Gauges g(c, init);
-    const auto v = g.sample(s);
-    for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << "no floor, line " << k;
-  }
+  // The second tank has no floor, the lines starting at the domain's bottom: a bed that
+  // reads below half filled, as the slide tsunami's deposit did at the slope's toe with the
+  // dynamic boundary. The spheres fill the gap from the bed up to the water, and the
+  // column reads the water's top, not a dry bed; without the spheres it reads dry.
+  const std::pair<const char*, std::string> tanks[] = {
+      {"floor", tank + "]\n"},
+      {"no floor", "walls: [{name: tank, box: {min: [0,0,0], max: [0.3,0.1,0.3]}, open: [zmin, zmax]}]\n"}};
+  for (const auto& [label, walls] : tanks)
+    for (const bool with_spheres : {true, false}) {
+      const auto v = read_over_deposit(walls, with_spheres, n, x0, dx);
+      for (int k = 0; k < n; ++k)
+        EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << label << ", spheres " << with_spheres << ", line " << k;
+    }
   const auto sheet = read_gauges(head("1.2") +
                                  "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}, "
                                  "{box: {min: [0,0,0.115], max: [0.3,0.1,0.135]}}]\n" +
