@@ -54,7 +54,7 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
         t.drho += std::fabs(one.drho) + std::fabs(prm.delta * prm.kernel.h * prm.eos.c0 * one.diff);
         t.grad_c += norm(one.grad_c);
         t.div_r += std::fabs(one.div_r);
-        if (p.sps && fluid_i) { // the SPS terms alone: the pair's terms with them less those without
+        if (p.sps) { // the SPS terms alone: the pair's terms with them less those without
           sph::SpsSums<Real> sps;
           sph::PairSums<Real> with;
           const SymTensor ti = sph::stress_over_rho(p.sps[i], a.rho);
@@ -62,7 +62,7 @@ TermScale term_scale(const sph::WcsphParams& prm, const neighbour::GridView& g, 
           sph::add_pair_terms(prm, rij, r2, std::sqrt(r2), a, sph::PairSide<Real>{p.vel[j], p.rho[j], p.press[j]},
                               fluid_pair, with, &sp);
           t.acc += norm(with.acc - one.acc);
-          t.strain += magnitude(sph::strain_rate(sps.strain));
+          if (fluid_i) t.strain += magnitude(sph::strain_rate(sps.strain));
         }
       });
   return t;

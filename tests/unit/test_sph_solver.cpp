@@ -248,6 +248,28 @@ TEST(InitialState, FluidLatticeIsCentredInItsBox) {
 // fill: exact (the default): round(L/dp) points per axis on a spacing stretched to L/n,
 // the first and last s/2 from the faces, and the particle mass from the volume placed:
 // the box of 14.6 x 10 x 29.2 spacings holds 15 x 10 x 29 particles standing for its own
+// laminar_sps at a wall (sps_stress_at_a_floor): every fluid particle given the stress
+// tau_xz / rho = s (xz only) or none, each particle's acceleration from the scalar pair
+// loop, in the execution space, on the host in the store's order.
+std::vector<Vec3> accelerations_with_stress(sph::WcsphSolver& s, Real sxz) {
+  s.refresh();
+  const particles::ParticleView p = s.view();
+  const neighbour::GridView g = s.grid_view();
+  const sph::WallHoldView gh = s.hold_view();
+  const sph::WcsphParams prm = s.params();
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) { p.sps[i] = p.kind[i] == fluid ? SymTensor{0, 0, 0, 0, sxz, 0} : SymTensor{}; });
+  const std::size_t n = p.n > 0 ? static_cast<std::size_t>(p.n) : 0;
+  par::Buffer<Vec3> acc(n);
+  Vec3* out = acc.data();
+  par::parallel_for(
+      p.n, SURGE_LAMBDA(int i) { out[i] = sph::wcsph_rates(prm, g, p, i, gh).acc; });
+  std::vector<Vec3> host;
+  par::download_ptr(host, out, n);
+  return host;
+}
+
 // volume exactly.
 TEST(InitialState, ExactFillHoldsTheBoxVolume) {
   const Case c = io::read_case_text("name: col\ndp: 0.01\ndomain: {min: [0,0,0], max: [0.6,0.1,0.4]}\n"
@@ -368,4 +390,55 @@ TEST(WcsphSolver, SpsStressOfAShearWaveIsTheOracles) {
   // The lattice's shrinking of the wave falls with dp: the continuum comes nearer.
   EXPECT_LT(fine.continuum_x, 0.6 * coarse.continuum_x);
   EXPECT_LT(fine.continuum_z, 0.6 * coarse.continuum_z);
+}
+
+// laminar_sps: the water's stress reaches the walls (SPEC §8: the momentum term over every
+// pair; a wall particle carries no stress, as in DualSPHysics). Water at rest on a floor,
+// no gravity, each fluid particle given the stress tau_xz / rho = s: the accelerations with
+// it less those without are the stress's term alone. The fluid-fluid pairs cancel in the
+// water's total, so the water's x force is that of the fluid-wall pairs, summed here by
+// brute force in double, F = m^2 s / rho0 sum_{i fluid, j wall} dW_ij/dz_i, and the walls take
+// -F (each wall particle the terms m tau_j / rho_j^2 of its fluid j). In the continuum
+// F = -rho0 s A / 2 (A the water's footprint; the walls' kernel fraction is 1/2 at their
+// surface): half the stress at the wall. Before 2026-12-07 the wall pairs were left out and F
+// was 0. Tolerances: 1e-3 of F for the float sums (each acceleration a sum of some 60
+// terms of the size of F's per-particle share); 10 % for the lattice against the continuum.
+TEST(WcsphSolver, SpsStressReachesTheWalls) {
+  const double rho0 = 1000, sxz = 0.5;
+  const Case c = io::read_case_text(
+      "name: floor\ndp: 0.01\ngravity: [0, 0, 0]\ndomain: {min: [0,0,0], max: [0.3,0.3,0.2]}\n"
+      "sph: {c0: 20, boundary: dynamic, viscosity: laminar_sps, hydrostatic_init: false}\n"
+      "fluid: [{box: {min: [0.06,0.06,0], max: [0.24,0.24,0.1]}}]\n"
+      "walls: [{name: floor, box: {min: [0,0,0], max: [0.3,0.3,0.2]}, open: [xmin, xmax, ymin, ymax, zmax]}]\n",
+      "floor.yaml");
+  sph::WcsphSolver s(sph::solver_config(c), sph::build_initial_state(c));
+  const std::vector<Vec3> with = accelerations_with_stress(s, static_cast<Real>(sxz));
+  const std::vector<Vec3> without = accelerations_with_stress(s, 0);
+  particles::HostParticles h;
+  s.download(h);
+  ASSERT_EQ(h.size(), with.size());
+  const double m = s.params().mass;
+  const sph::WendlandC2 kernel = s.params().kernel;
+  const double support = kernel.support();
+  double fluid_x = 0, wall_x = 0, oracle = 0;
+  const auto fluid = static_cast<std::uint8_t>(Kind::Fluid);
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double ax = static_cast<double>(with[i].x) - without[i].x;
+    (h.kind[i] == fluid ? fluid_x : wall_x) += m * ax;
+    if (h.kind[i] != fluid) continue;
+    for (std::size_t j = 0; j < h.size(); ++j) {
+      if (h.kind[j] == fluid) continue;
+      const double dx = h.pos[i].x - h.pos[j].x, dy = h.pos[i].y - h.pos[j].y, dz = h.pos[i].z - h.pos[j].z;
+      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (r < support) oracle += m * m * sxz / rho0 * dz * kernel.dw_over_r(static_cast<Real>(r));
+    }
+  }
+  const double continuum = -rho0 * sxz * 0.18 * 0.18 / 2;
+  std::printf("SPS stress at a floor: the water's x force %.6g N (brute force %.6g N, the continuum's half stress "
+              "%.6g N: %+.1f %%), the walls' %.6g N\n",
+              fluid_x, oracle, continuum, 100 * (oracle / continuum - 1), wall_x);
+  ASSERT_LT(oracle, 0);
+  EXPECT_NEAR(fluid_x, oracle, 1e-3 * std::fabs(oracle));
+  EXPECT_NEAR(wall_x, -oracle, 1e-3 * std::fabs(oracle));
+  EXPECT_NEAR(oracle / continuum, 1.0, 0.10);
 }

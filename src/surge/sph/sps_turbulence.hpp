@@ -4,8 +4,13 @@
 //             a wall's or body's particle brings its own velocity)
 //   tau_i/rho_i = 2 nu_t (S_i - tr(S_i)/3 I) - 2/3 C_I D^2 |S_i|^2 I,
 //   nu_t = (C_s D)^2 |S_i|,  |S| = (2 S:S)^(1/2),  D = dp
-//   dv_i/dt += sum_j m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W_ij  (fluid j only: the
-//             stress is the water's; walls drag through the laminar term)
+//   dv_i/dt += sum_j m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W_ij  (every pair with water
+//             in it; a wall's or body's particle carries no stress, tau = 0, as in DualSPHysics)
+// So the water's stress reaches the walls: the wall pairs carry the momentum the water
+// loses to them (action and reaction: a wall or body particle takes m_j tau_j/rho_j^2 from
+// each fluid j), half the stress tau_xz A at the wall in the continuum (the walls' kernel
+// fraction there is 1/2). With the pairs left out, as before 2026-12-07, a wall took none:
+// the truncated sum then moved momentum between the layers of water only, a free-slip wall.
 // In DualSPHysics's order: the stress is a particle's state (ParticleView::sps: sorted,
 // exchanged, checkpointed). The rates pass sums the strain rate and the momentum term from
 // the stresses the particles carry, in the same pair loop; the step then sets each
@@ -56,15 +61,16 @@ template <class T>
 }
 
 // The SPS terms of the pair (i, j) (add_pair_terms: vij = v_i - v_j): i's strain rate from
-// j, and where `fluid_pair` (both fluid) the stress's momentum term, added to acc; ti is
-// i's side tau_i/rho_i^2 (stress_over_rho, once per particle), tau_j the stress tau/rho
-// that j carries. Written for the pair loop's arithmetic, which is what laminar_sps costs:
-// m grad W once for both terms, 1/rho_j once for V_j and tau_j/rho_j^2, the strain's
-// v_j - v_i folded into the sums' signs, and the momentum term masked through its gradient.
-template <class T, class Mask>
+// j, and the stress's momentum term, added to acc; ti is i's side tau_i/rho_i^2
+// (stress_over_rho, once per particle; 0 for a wall or body particle), tau_j the stress
+// tau/rho that j carries (0 for a wall or body particle). The strain sums are read for
+// fluid i only. Written for the pair loop's arithmetic, which is what laminar_sps costs:
+// m grad W once for both terms, 1/rho_j once for V_j and tau_j/rho_j^2, and the strain's
+// v_j - v_i folded into the sums' signs.
+template <class T>
 SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const Vec3T<T>& vij, T rho_j,
-                                         const SymTensorT<T>& ti, const SymTensorT<T>& tau_j, Mask fluid_pair,
-                                         SymTensorT<T>& strain, Vec3T<T>& acc) {
+                                         const SymTensorT<T>& ti, const SymTensorT<T>& tau_j, SymTensorT<T>& strain,
+                                         Vec3T<T>& acc) {
   const T inv_rho = 1 / rho_j;
   const Vec3T<T> mgrad = grad * splat<T>(mass);
   const Vec3T<T> vgrad = mgrad * inv_rho; // V_j grad_i W_ij, V_j = m / rho_j
@@ -81,12 +87,7 @@ SURGE_HD SURGE_INLINE void add_sps_terms(Real mass, const Vec3T<T>& grad, const 
   strain.yz -= vij.z * vgrad.y;
   const SymTensorT<T> sum{ti.xx + tau_j.xx * inv_rho, ti.yy + tau_j.yy * inv_rho, ti.zz + tau_j.zz * inv_rho,
                           ti.xy + tau_j.xy * inv_rho, ti.xz + tau_j.xz * inv_rho, ti.yz + tau_j.yz * inv_rho};
-  Vec3T<T> g = mgrad;
-  if constexpr (std::is_same_v<T, Real>) {
-    if (!fluid_pair) return;
-  } else {
-    g = pick(fluid_pair, mgrad, Vec3T<T>{});
-  }
+  const Vec3T<T>& g = mgrad;
   acc.x += sum.xx * g.x;
   acc.x += sum.xy * g.y;
   acc.x += sum.xz * g.z;

@@ -164,8 +164,8 @@ struct SpsPair {
 
 // Adds the terms of the pairs (i, j) to s: rij = x_i - x_j, r2 = |rij|^2, r = |rij|;
 // `diffuse`: both are fluid (density diffusion acts between fluid particles only); with
-// `sps` (laminar_sps, fluid i) the SPS terms of the same pairs, from the same kernel
-// gradient and velocity difference, to sps->sums and s.acc.
+// `sps` (laminar_sps) the SPS terms of the same pairs, from the same kernel gradient and
+// velocity difference, to sps->sums and s.acc.
 template <class T, class Mask>
 SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>& rij, T r2, T r, const PairSide<T>& a,
                                           const PairSide<T>& b, Mask diffuse, PairSums<T>& s,
@@ -195,7 +195,7 @@ SURGE_HD SURGE_INLINE void add_pair_terms(const WcsphParams& prm, const Vec3T<T>
   if (prm.viscosity == Viscosity::Laminar || prm.viscosity == Viscosity::LaminarSps)
     s.acc += vij * (prm.mass * 4 * prm.nu * dot(rij, grad) * inv_rho_sum * inv_r2e);
   if (prm.shift.on()) add_shift_terms(prm.shift, rij, grad, prm.mass / b.rho, prm.kernel.w(r), s.grad_c, s.div_r);
-  if (sps) add_sps_terms(prm.mass, grad, vij, b.rho, sps->ti, sps->tau_j, diffuse, sps->sums.strain, s.acc);
+  if (sps) add_sps_terms(prm.mass, grad, vij, b.rho, sps->ti, sps->tau_j, sps->sums.strain, s.acc);
 }
 
 // The rates of particle i from its sums.
@@ -274,9 +274,10 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
   const auto fluid = static_cast<std::uint8_t>(Kind::Fluid), wall = static_cast<std::uint8_t>(Kind::Wall);
   const bool fluid_i = p.kind[i] == fluid;
   PairSums<Real> s;
-  SpsSums<Real> sps; // laminar_sps only, and for fluid only: a wall carries no stress
-  const bool sps_i = p.sps && fluid_i;
-  const SymTensor ti = sps_i ? stress_over_rho(p.sps[i], a.rho) : SymTensor{};
+  // laminar_sps: the stress's term on every pair (a wall or body particle carries none, 0,
+  // and takes the water's), the strain rate read for fluid only.
+  SpsSums<Real> sps;
+  const SymTensor ti = p.sps ? stress_over_rho(p.sps[i], a.rho) : SymTensor{};
   FirstContact contact; // no penetration: the wall face or wall particle this fluid particle would reach first
   const Real keep_off = keep_off_distance(prm.dp);
   // Boundary particles (fluid_i false) only ever see fluid j.
@@ -284,16 +285,16 @@ SURGE_HD SURGE_NOINLINE inline void consider_wall(const WallHoldView& gh, const 
     if (j == i) return;
     const Real r = std::sqrt(r2);
     if (fluid_i && gh.hold && p.kind[j] == wall) consider_wall(gh, p, j, xi, a.vel, rij, r, keep_off, contact);
-    const SpsPair<Real> sp{ti, sps_i ? p.sps[j] : ti, sps};
+    const SpsPair<Real> sp{ti, p.sps ? p.sps[j] : ti, sps};
     add_pair_terms(prm, rij, r2, r, a, PairSide<Real>{p.vel[j], p.rho[j], p.press[j]}, fluid_i && p.kind[j] == fluid, s,
-                   sps_i ? &sp : nullptr);
+                   p.sps ? &sp : nullptr);
   };
   if (fluid_i)
     neighbour::for_each_neighbour(g, xi, r2max, pair);
   else
     neighbour::for_each_fluid_neighbour(g, xi, r2max, pair);
   Rates out = finish_rates(prm, fluid_i, s, contact.choice);
-  if (sps_i) add_sps_rates(sps, out);
+  if (p.sps && fluid_i) add_sps_rates(sps, out);
   return out;
 }
 
