@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""One height gauge from several runs of a case, side by side: its elevation (the reading
-minus the reading at t = 0) over time, and each run's crest (the largest elevation).
+"""Height gauges from several runs of a case, side by side: each gauge's elevation (the
+reading minus the reading at t = 0) over time, and each run's crest (the largest elevation).
 
-usage: plot_gauges.py GAUGE LABEL=GAUGES_CSV [LABEL=GAUGES_CSV ...] --png OUT.png [--end T]
-GAUGES_CSV: a run's gauges.csv, or its folder. Example (docs/validation.md, slide tsunami):
+usage: plot_gauges.py GAUGE[,GAUGE...] LABEL=GAUGES_CSV [LABEL=GAUGES_CSV ...] --png OUT.png [--end T]
+GAUGES_CSV: a run's gauges.csv, or its folder. Several gauges (comma-separated): one panel
+each, two to a row. Examples (docs/validation.md, slide tsunami):
   plot_gauges.py M1 paper=out/slide_paper "mdbc only"=out/slide_mdbc --end 0.7 --png m1.png
+  plot_gauges.py M1,M2,M3,M4 paper=out/slide_paper recommended=docs/runs/slide_tsunami_recommended_gauges.csv --png m.png
 """
 import argparse
 import os
@@ -26,7 +28,10 @@ ap.add_argument("--png", required=True)
 ap.add_argument("--end", type=float, default=None, help="last time shown [s]")
 args = ap.parse_args()
 
-fig, ax = plt.subplots(figsize=(7, 4))
+gauges = args.gauge.split(",")
+rows = (len(gauges) + 1) // 2
+cols = 1 if len(gauges) == 1 else 2
+fig, axes = plt.subplots(rows, cols, figsize=(7 * cols, 4 * rows), squeeze=False)
 for spec in args.runs:
     label, _, path = spec.partition("=")
     if not path:
@@ -34,11 +39,21 @@ for spec in args.runs:
     if os.path.isdir(path):
         path = os.path.join(path, "gauges.csv")
     g = np.genfromtxt(path, delimiter=",", names=True)
-    if args.gauge not in g.dtype.names:
-        sys.exit(f"plot_gauges.py: {path} has no gauge {args.gauge}")
-    t, eta = g["time"], 1000 * (g[args.gauge] - g[args.gauge][0])
-    keep = t <= args.end + 1e-9 if args.end is not None else np.ones(len(t), bool)
-    k = np.argmax(np.where(keep, eta, -np.inf))
-    print(f"{label}: {args.gauge} crest {eta[k]:.1f} mm at {t[k]:.3f} s (to {t[keep][-1]:.3f} s)")
-    ax.plot(t[keep], eta[keep], label=f"{label} (crest {eta[k]:.1f} mm)")
-surge_post.finish_plot(fig, ax, "t [s]", f"{args.gauge} elevation [mm]", args.png)
+    for n, gauge in enumerate(gauges):
+        if gauge not in g.dtype.names:
+            sys.exit(f"plot_gauges.py: {path} has no gauge {gauge}")
+        t, eta = g["time"], 1000 * (g[gauge] - g[gauge][0])
+        keep = t <= args.end + 1e-9 if args.end is not None else np.ones(len(t), bool)
+        k = np.argmax(np.where(keep, eta, -np.inf))
+        print(f"{label}: {gauge} crest {eta[k]:.1f} mm at {t[k]:.3f} s (to {t[keep][-1]:.3f} s)")
+        axes[n // cols][n % cols].plot(t[keep], eta[keep], label=f"{label} (crest {eta[k]:.1f} mm)")
+for n, gauge in enumerate(gauges[:-1]):  # the last panel's labels and the file: finish_plot
+    ax = axes[n // cols][n % cols]
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(f"{gauge} elevation [mm]")
+    ax.grid(alpha=0.3)
+    ax.legend()
+if len(gauges) % 2 == 1 and cols == 2:
+    axes[-1][-1].axis("off")
+n = len(gauges) - 1
+surge_post.finish_plot(fig, axes[n // cols][n % cols], "t [s]", f"{gauges[-1]} elevation [mm]", args.png)

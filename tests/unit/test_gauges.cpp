@@ -133,9 +133,10 @@ TEST(Gauges, LineOverABoxObstacleReadsItsTopWhenDry) {
 namespace {
 
 // The column readings of n lines from x0 in steps of dx over water 0.085-0.15 m in the
-// tank `walls`, with (or without) a deposit of two layers of spheres of radius r on the
-// bed, their body particles at dp as the coupling places them.
-std::vector<double> read_over_deposit(const std::string& walls, bool with_spheres, int n, double x0, double dx) {
+// tank `walls`, with (or without) a deposit of two layers of spheres of radius r, `lift`
+// above the bed, their body particles at dp as the coupling places them.
+std::vector<double> read_over_deposit(const std::string& walls, bool with_spheres, int n, double x0, double dx,
+                                      double lift = 0) {
   const double dp = 0.01, r = 0.02;
   const Case c = io::read_case_text(head("1.2") + "fluid: [{box: {min: [0,0,0.085], max: [0.3,0.1,0.15]}}]\n" + walls +
                                         lines(n, x0, dx),
@@ -147,7 +148,7 @@ std::vector<double> read_over_deposit(const std::string& walls, bool with_sphere
       for (double x = r; x < 0.3 - r / 2; x += 2 * r)
         for (double y = r; y < 0.1 - r / 2; y += 2 * r) {
           dem::Sphere s;
-          s.pos = Vec3(Vec3d{x, y, r + 2 * r * layer} - init.origin);
+          s.pos = Vec3(Vec3d{x, y, lift + r + 2 * r * layer} - init.origin);
           s.radius = static_cast<Real>(r);
           spheres.push_back(s);
         }
@@ -184,6 +185,16 @@ TEST(Gauges, ColumnReadsTheWaterOverAPorousDeposit) {
       for (int k = 0; k < n; ++k)
         EXPECT_NEAR(v[k], with_spheres ? 0.15 : 0.0, dp / 2) << label << ", spheres " << with_spheres << ", line " << k;
     }
+  // Spheres held off the bed by up to 2 dp, within the kernel's reach of it (resting on
+  // others beside the line, or held off by the water: the slide tsunami's toe at 0.84 and
+  // 1.1 s with the dynamic boundary, where a sphere's bottom stood 1.3 dp above the floor
+  // and M1 read the bed, 6 mm): the gap between the bed's face and the lowest spheres is
+  // part of the column. Before, the lines through the pores read the bed from 0.5 dp up,
+  // every line from 1 dp.
+  for (const double lift : {0.5 * dp, dp, 1.5 * dp, 2 * dp}) {
+    const auto v = read_over_deposit(tank + "]\n", true, n, x0, dx, lift);
+    for (int k = 0; k < n; ++k) EXPECT_NEAR(v[k], 0.15, dp / 2) << "lift " << lift << ", line " << k;
+  }
   const auto sheet = read_gauges(head("1.2") +
                                  "fluid: [{box: {min: [0,0,0], max: [0.3,0.1,0.1]}}, "
                                  "{box: {min: [0,0,0.115], max: [0.3,0.1,0.135]}}]\n" +

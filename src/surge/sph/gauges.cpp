@@ -38,6 +38,7 @@ void point_sums(const WcsphParams& prm, const neighbour::GridView& g, const part
 
 Gauges::Gauges(const Case& c, const InitialState& init) {
   dz_ = c.dp / 4;
+  bed_reach_ = static_cast<int>(2 * c.h() / dz_);
   const Vec3d o = init.origin;
   origin_z_ = o.z;
   origin_ = o;
@@ -200,6 +201,13 @@ double Gauges::body_value(WcsphSolver& solver, const Probe& pr, const Distributi
   return motion::body_reading(pr.spec.component, s, origin_, l.force, l.moment);
 }
 
+namespace {
+// A column's samples within 1.5 dp of the bed's face (dz = dp / 4); the fractions that
+// count as water or spheres within reach, and as spheres present (past_pores).
+constexpr int kNearFace = 6;
+constexpr double kNear = 0.04, kSpheres = 0.1;
+} // namespace
+
 // What a wave gauge reads: the top of the water standing on the bed. The samples start at
 // the bed's face, where the filled fraction (water and wall together) is about 1/2 when
 // dry and near 1 under water; the surface is where the fraction, going up, next falls
@@ -217,11 +225,10 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
     return static_cast<double>(s.vw + s.vw_solid);
   };
   const auto z = [&](int k) { return static_cast<double>(points_host_[pr.first_sample + k].z); };
-  const int near_face = 6; // samples within 1.5 dp of the face (dz = dp / 4)
-  int k = std::min(pr.n_samples - 1, near_face);
+  int k = std::min(pr.n_samples - 1, kNearFace);
   while (k >= 0 && filled(k) < 0.5) --k;
-  if (k < 0) k = past_pores(pr, sums, first_near(pr, sums, near_face)); // spheres on the bed, water above
-  if (k < 0) return {z(0), -1};                                         // dry
+  if (k < 0) k = past_pores(pr, sums, first_near(pr, sums)); // spheres on the bed, water above
+  if (k < 0) return {z(0), -1};                              // dry
   for (; k + 1 < pr.n_samples; ++k) {
     const double f0 = filled(k), f1 = filled(k + 1);
     if (f1 >= 0.5) continue;
@@ -237,14 +244,13 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
 // half of the pile, and the pores and the stand-off between the pile and the water above
 // read as gaps. A gap is part of the column when the column is filled again above it,
 // every sample in it is within kernel reach of water or spheres (fluid + body fraction
-// at least kNear: 0.07 between two layers of spheres beside a line through the pores) and
-// spheres are in it (a body fraction of at least kSpheres somewhere).
+// at least kNear: 0.07 between two layers of spheres beside a line through the pores;
+// within the kernel's reach of the bed's face, 2 h, the bed is near, so the gap between
+// the bed and spheres held off it is part of the column) and spheres are in it (a body
+// fraction of at least kSpheres somewhere).
 // Returns that filled sample, or -1 where the gap is air: nothing above it, a stretch
-// with nothing near, or no sphere in it (spray, a sheet: read as before, and walls do
-// not count, so a line along a wall does not climb it).
-namespace {
-constexpr double kNear = 0.04, kSpheres = 0.1;
-} // namespace
+// with nothing near, or no sphere in it (spray, a sheet: read as before, and walls
+// farther up do not count, so a line along a wall does not climb it).
 
 int Gauges::past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const {
   if (k < 0) return -1;
@@ -252,17 +258,17 @@ int Gauges::past_pores(const Probe& pr, const std::vector<PointSums>& sums, int 
   for (; k < pr.n_samples; ++k) {
     const PointSums& s = sums[pr.first_sample + k];
     if (static_cast<double>(s.vw + s.vw_solid) >= 0.5) return spheres ? k : -1;
-    if (static_cast<double>(s.vw + s.vw_body) < kNear) return -1;
+    if (k >= bed_reach_ && static_cast<double>(s.vw + s.vw_body) < kNear) return -1; // the bed is within reach below
     spheres = spheres || static_cast<double>(s.vw_body) >= kSpheres;
   }
   return -1;
 }
 
-// The first of the samples within `near_face` of the bed's face with water or spheres
+// The first of the samples within kNearFace of the bed's face with water or spheres
 // within kernel reach (where spheres touch the bed only at points, the line between
 // them starts empty); -1 if none.
-int Gauges::first_near(const Probe& pr, const std::vector<PointSums>& sums, int near_face) const {
-  for (int k = 0; k <= near_face && k < pr.n_samples; ++k) {
+int Gauges::first_near(const Probe& pr, const std::vector<PointSums>& sums) const {
+  for (int k = 0; k <= kNearFace && k < pr.n_samples; ++k) {
     const PointSums& s = sums[pr.first_sample + k];
     if (static_cast<double>(s.vw + s.vw_body) >= kNear) return k;
   }

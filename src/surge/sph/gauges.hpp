@@ -92,6 +92,7 @@ private:
   [[nodiscard]] double body_value(WcsphSolver& solver, const Probe& pr, const Distribution& dist);
   par::Buffer<Vec3> wall_pos_; // a body gauge's wall particles' positions, by id - first id
   double dz_ = 0;
+  int bed_reach_ = 0; // a column's samples within the kernel's reach (2 h) of the bed's face
   double origin_z_ = 0;
   // The kernel sums at every sample point, combined across processes.
   std::vector<PointSums> point_sums(WcsphSolver& solver, const Distribution& dist);
@@ -102,7 +103,7 @@ private:
   };
   [[nodiscard]] Top column_top(const Probe& pr, const std::vector<PointSums>& sums) const;
   [[nodiscard]] int past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const;
-  [[nodiscard]] int first_near(const Probe& pr, const std::vector<PointSums>& sums, int near_face) const;
+  [[nodiscard]] int first_near(const Probe& pr, const std::vector<PointSums>& sums) const;
   [[nodiscard]] double highest_wet(const Probe& pr, const std::vector<PointSums>& sums) const;
 };
 
