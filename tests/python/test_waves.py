@@ -399,7 +399,10 @@ if PART == "solitary":  # its own ctest (waves_solitary)
                            ("artificial", "viscosity: artificial, shifting: none"),
                            ("artificial_fickian", "viscosity: artificial, shifting: fickian"),
                            ("laminar_sps", "viscosity: laminar_sps, shifting: none"),
-                           ("laminar_sps_fickian", "viscosity: laminar_sps, shifting: fickian")):
+                           ("laminar_sps_fickian", "viscosity: laminar_sps, shifting: fickian"),
+                           ("artificial_delta_plus", "viscosity: artificial, shifting: delta_plus"),
+                           ("laminar_delta_plus", "viscosity: laminar, shifting: delta_plus"),
+                           ("laminar_sps_delta_plus", "viscosity: laminar_sps, shifting: delta_plus")):
             if ONLY is None or label in ONLY:
                 solitary(label, sph, False)
 checks.finish("wave theory")
