@@ -251,7 +251,6 @@ Gauges::Top Gauges::column_top(const Probe& pr, const std::vector<PointSums>& su
 // Returns that filled sample, or -1 where the gap is air: nothing above it, a stretch
 // with nothing near, or no sphere in it (spray, a sheet: read as before, and walls
 // farther up do not count, so a line along a wall does not climb it).
-
 int Gauges::past_pores(const Probe& pr, const std::vector<PointSums>& sums, int k) const {
   if (k < 0) return -1;
   bool spheres = false;
