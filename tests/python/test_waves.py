@@ -24,7 +24,7 @@ particle (fluid[].particles) and compares a run with a closed form.
    sqrt(g (h + A)), height loss at most 5 % with laminar viscosity and fickian shifting
    (only with --part solitary: ctest waves_solitary, label long).
 
-Usage: test_waves.py SURGE WORK [--long [--only LABEL,...]] [--open] [--part standing|taylor_green|hydrostatic|solitary]
+Usage: test_waves.py SURGE WORK [--long [--only LABEL,...]] [--open] [--reuse] [--part standing|taylor_green|hydrostatic|solitary]
 Every run names its viscosity and shifting: the figures do not move with the defaults.
 --long also runs the other settings, whose figures are printed, not checked; --open also
 checks what surge does not meet yet: the standing wave's decay at h = 1.2 dp (2 % per
@@ -48,9 +48,13 @@ OPEN = "--open" in sys.argv  # also the targets not met yet (ctest label open): 
 PART = sys.argv[sys.argv.index("--part") + 1] if "--part" in sys.argv else None
 # --only LABEL,...: of the solitary rows (laminar_fickian and --long's), only these (about 40 minutes each)
 ONLY = sys.argv[sys.argv.index("--only") + 1].split(",") if "--only" in sys.argv else None
-shutil.rmtree(WORK, ignore_errors=True)
-os.makedirs(WORK)
-checks = Checks(SURGE, WORK)
+# --reuse: WORK is kept, and a run whose folder there says it completed is read, not run
+# again (a report's long runs continued with `surge restart` across sessions).
+REUSE = "--reuse" in sys.argv
+if not REUSE:
+    shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK, exist_ok=True)
+checks = Checks(SURGE, WORK, reuse=REUSE)
 check = checks.check
 G, RHO0, GAMMA = 9.81, 1000.0, 7.0
 
