@@ -47,13 +47,9 @@ for spec in args.runs:
         k = np.argmax(np.where(keep, eta, -np.inf))
         print(f"{label}: {gauge} crest {eta[k]:.1f} mm at {t[k]:.3f} s (to {t[keep][-1]:.3f} s)")
         axes[n // cols][n % cols].plot(t[keep], eta[keep], label=f"{label} (crest {eta[k]:.1f} mm)")
-for n, gauge in enumerate(gauges[:-1]):  # the last panel's labels and the file: finish_plot
-    ax = axes[n // cols][n % cols]
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel(f"{gauge} elevation [mm]")
-    ax.grid(alpha=0.3)
-    ax.legend()
+for n, gauge in enumerate(gauges):
+    surge_post.style_axes(axes[n // cols][n % cols], "t [s]", f"{gauge} elevation [mm]")
 if len(gauges) % 2 == 1 and cols == 2:
     axes[-1][-1].axis("off")
-n = len(gauges) - 1
-surge_post.finish_plot(fig, axes[n // cols][n % cols], "t [s]", f"{gauges[-1]} elevation [mm]", args.png)
+fig.tight_layout()
+fig.savefig(args.png, dpi=120)

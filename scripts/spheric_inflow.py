@@ -27,10 +27,7 @@ RHO, G = 1000.0, 9.81
 for run in args.runs:
     dp = surge_post.read_run_dp(run)
     rows = []
-    for t, frame in surge_post.read_pvd(os.path.join(run, "fluid.pvd")):
-        if t < args.t0 - 1e-9 or t > args.t1 + 1e-9:
-            continue
-        f = surge_post.read_vtp(frame)
+    for _, f in surge_post.read_frames(run, args.t0, args.t1):
         p, v = f["position"], f["velocity"]
         slab = (p[:, 0] > X0) & (p[:, 0] < X1) & (p[:, 1] > Y0) & (p[:, 1] < Y1)
         low = slab & (p[:, 2] < LOW)

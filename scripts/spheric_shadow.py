@@ -24,10 +24,8 @@ args = ap.parse_args()
 BOX_X, BOX_Y0, BOX_Y1, H1_X = 0.6635, 0.2955, 0.6985, 0.496
 for run in args.runs:
     print(os.path.basename(os.path.normpath(run)))
-    for t, frame in surge_post.read_pvd(os.path.join(run, "fluid.pvd")):
-        if t < args.t0 - 1e-9 or t > args.t1 + 1e-9:
-            continue
-        p = surge_post.read_vtp(frame)["position"]
+    for t, f in surge_post.read_frames(run, args.t0, args.t1):
+        p = f["position"]
         shadow = p[(p[:, 0] < BOX_X) & (p[:, 1] > BOX_Y0) & (p[:, 1] < BOX_Y1)]
         wall = p[p[:, 0] < 0.05]
         runup = np.percentile(wall[:, 2], 99) if len(wall) else 0.0

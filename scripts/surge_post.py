@@ -56,6 +56,13 @@ def read_pvd(path):
     return sorted(items)
 
 
+def read_frames(run, t0, t1, pvd="fluid.pvd"):
+    """(time, read_vtp's fields) of a run's frames with t0 <= time <= t1, in time order."""
+    for t, frame in read_pvd(os.path.join(run, pvd)):
+        if t0 - 1e-9 <= t <= t1 + 1e-9:
+            yield t, read_vtp(frame)
+
+
 def read_gauges(path):
     """(names, array with one row per sample; column 0 is time)."""
     with open(path) as f:
@@ -98,11 +105,16 @@ def read_run_dp(run):
         return next(float(line.split(":")[1]) for line in f if line.startswith("dp:"))
 
 
-def finish_plot(fig, ax, xlabel, ylabel, png):
-    """Labels, grid and legend of a one-axis validation plot, saved as PNG."""
+def style_axes(ax, xlabel, ylabel):
+    """Labels, grid and legend of one validation plot's axes."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
     ax.legend()
+
+
+def finish_plot(fig, ax, xlabel, ylabel, png):
+    """Labels, grid and legend of a one-axis validation plot, saved as PNG."""
+    style_axes(ax, xlabel, ylabel)
     fig.tight_layout()
     fig.savefig(png, dpi=120)
