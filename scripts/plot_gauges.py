@@ -2,8 +2,9 @@
 """Height gauges from several runs of a case, side by side: each gauge's elevation (the
 reading minus the reading at t = 0) over time, and each run's crest (the largest elevation).
 
-usage: plot_gauges.py GAUGE[,GAUGE...] LABEL=GAUGES_CSV [LABEL=GAUGES_CSV ...] --png OUT.png [--end T]
-GAUGES_CSV: a run's gauges.csv, or its folder. Several gauges (comma-separated): one panel
+usage: plot_gauges.py GAUGE[,GAUGE...] LABEL=GAUGES_CSV [LABEL=GAUGES_CSV ...] --png OUT.png [--end T] [--floor MM]
+GAUGES_CSV: a run's gauges.csv, or its folder. --floor MM: elevations below MM are drawn
+as gaps, their count printed (a gauge that read the dry bed, not the water). Several gauges (comma-separated): one panel
 each, two to a row. Examples (docs/validation.md, slide tsunami):
   plot_gauges.py M1 paper=out/slide_paper "mdbc only"=out/slide_mdbc --end 0.7 --png m1.png
   plot_gauges.py M1,M2,M3,M4 paper=out/slide_paper recommended=docs/runs/slide_tsunami_recommended_gauges.csv --png m.png
@@ -26,6 +27,7 @@ ap.add_argument("gauge")
 ap.add_argument("runs", nargs="+", help="LABEL=path to gauges.csv or its run folder")
 ap.add_argument("--png", required=True)
 ap.add_argument("--end", type=float, default=None, help="last time shown [s]")
+ap.add_argument("--floor", type=float, default=None, help="elevations below this [mm] are gaps")
 args = ap.parse_args()
 
 gauges = args.gauge.split(",")
@@ -46,7 +48,13 @@ for spec in args.runs:
         keep = t <= args.end + 1e-9 if args.end is not None else np.ones(len(t), bool)
         k = np.argmax(np.where(keep, eta, -np.inf))
         print(f"{label}: {gauge} crest {eta[k]:.1f} mm at {t[k]:.3f} s (to {t[keep][-1]:.3f} s)")
-        axes[n // cols][n % cols].plot(t[keep], eta[keep], label=f"{label} (crest {eta[k]:.1f} mm)")
+        shown = eta.copy()
+        if args.floor is not None:
+            dry = keep & (eta < args.floor)
+            if dry.any():
+                print(f"{label}: {gauge} {dry.sum()} samples below {args.floor:g} mm left out: {t[dry]}")
+            shown[dry] = np.nan
+        axes[n // cols][n % cols].plot(t[keep], shown[keep], label=f"{label} (crest {eta[k]:.1f} mm)")
 for n, gauge in enumerate(gauges):
     surge_post.style_axes(axes[n // cols][n % cols], "t [s]", f"{gauge} elevation [mm]")
 if len(gauges) % 2 == 1 and cols == 2:
