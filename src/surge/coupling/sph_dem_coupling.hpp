@@ -39,7 +39,7 @@ public:
 
   // A distributed run: each process holds some body particles; their accelerations and
   // positions are combined before the per-sphere sums, and every process then advances
-  // the same DEM with the same force (see ARCHITECTURE.md, distributed runs).
+  // the same DEM with the same force (see docs/internals.md, distributed runs).
   // per_sphere: each process's per-sphere sums are combined in rank order instead of the
   // body particles themselves (CouplingConfig::force_sum).
   void set_distribution(const Distribution& d, bool per_sphere = false) {
