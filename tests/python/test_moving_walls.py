@@ -6,7 +6,8 @@ the block's own frame), none may be removed, and the block's body gauge must fol
 law (x = x0 + v t) and feel a drag against its motion.
 
 usage: test_moving_walls.py SURGE WORKDIR [--quick | --long]
-  --quick (quick tests): mdbc at 0.5 m/s for 0.1 s, and the restarts of a flap and a free block;
+  --quick (quick tests): mdbc at 0.5 m/s for 0.1 s, the restarts of a flap and a free block, and a
+  free block that sinks out of the domain (the run stops, exit 3);
   default (CI's validation, about 2 minutes): the dynamic boundary at 0.5 m/s for 0.15 s and both
   models at 2 m/s for 0.1 s; --long (ctest -L long): both models at 0.5 m/s for 0.3 s (the drag
   coefficients of docs/validation.md) and at 2 m/s, and the restarts."""
@@ -134,6 +135,19 @@ out = restarted_bitwise("free block", FREE, "mdbc")
 if out:
     g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
     check(g["bvz"][-1] > 0, f"the free block (density 700) rises (vz = {g['bvz'][-1]:.4f} m/s at 0.06 s)")
+
+# A free body that leaves the domain stops the run (bodies do not meet walls yet: a block
+# of density 8000 sinks through the tank's floor), exit 3 naming it, the outputs kept.
+path = os.path.join(WORK, "sinking.yaml")
+open(path, "w").write(FREE.replace("density: 700", "density: 8000").format(end=0.5, boundary="mdbc", v=0))
+out = os.path.join(WORK, "sinking")
+r = subprocess.run([SURGE, "run", path, "--out", out, "--quiet", "--set", "dp=0.02"], capture_output=True, text=True)
+s = json.load(open(os.path.join(out, "summary.json")))
+check(r.returncode == 3 and "the free body 'block' left the domain (z in" in r.stderr and s["status"] == "diverged",
+      f"a sinking free block stops the run, exit 3 naming it (exit {r.returncode}: {r.stderr[-300:]})")
+g = np.genfromtxt(os.path.join(out, "gauges.csv"), delimiter=",", names=True)
+check(0 < g["time"][-1] < 0.5 and os.path.exists(os.path.join(out, "particles", "fluid_0001.vtp")),
+      f"its gauges (to {g['time'][-1]:.3f} s) and frames up to then are kept")
 
 print("FAILED: " + "; ".join(failures) if failures else "all passed")
 sys.exit(1 if failures else 0)

@@ -87,10 +87,12 @@ public:
   }
 
   double step(double dt_max, double t, bool& stop, bool& checkpoint_due, std::string& failure) override {
-    (void)dt_max, (void)failure; // non-finite states are caught at outputs
-    solver_.step(dt_);           // a fixed step: outputs fall on the first step at or after their time
+    (void)dt_max;      // non-finite states are caught at outputs
+    solver_.step(dt_); // a fixed step: outputs fall on the first step at or after their time
     const auto dt = static_cast<double>(dt_);
     bodies_.advance(solver_, dt, t + dt); // the moving walls: free bodies under the spheres' loads
+    if (const std::string e = bodies_.escaped(); !e.empty())
+      failure = "diverged at t = " + std::to_string(t + dt) + " s: " + e;
     ++steps_;
     if (domain::comm::size() > 1) {
       double flags[2] = {stop ? 1.0 : 0.0, checkpoint_due ? 1.0 : 0.0};

@@ -36,29 +36,45 @@ struct Extent {
   Box placed, region;
 };
 
-// Refuses a motion that takes any corner of the wall's box out of its region (beyond it
-// the grid clamps and nothing is tested) at one of 2,000 times from 0 to `end` or at `end`.
+// Where the point x lies outside `region` (beyond it the grid clamps and nothing is
+// tested): "AXIS in [LO, HI] m ... AXIS = X m"; empty if inside.
+std::string outside(const Vec3d& x, const Box& region) {
+  const char* axes = "xyz";
+  for (int k = 0; k < 3; ++k) {
+    if (x[k] >= region.min[k] - 1e-9 && x[k] <= region.max[k] + 1e-9) continue;
+    char b[160];
+    std::snprintf(b, sizeof b, "%c in [%.4g, %.4g] m, where a point of it reaches %c = %.4g m", axes[k], region.min[k],
+                  region.max[k], axes[k], x[k]);
+    return b;
+  }
+  return {};
+}
+
+// Refuses a motion that takes any corner of the wall's box out of its region at one of
+// 2,000 times from 0 to `end` or at `end`.
 void check_stays_inside(const Case& c, const motion::Motion& mo, const Extent& e) {
   const int n = 2000;
-  const char* axes = "xyz";
   for (int s = 0; s <= n; ++s) {
     const double t = c.time.end * s / n;
     const motion::Pose p = mo.at(t);
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3d x0{corner & 1 ? e.placed.max.x : e.placed.min.x, corner & 2 ? e.placed.max.y : e.placed.min.y,
                      corner & 4 ? e.placed.max.z : e.placed.min.z};
-      const Vec3d x = p.place(e.pivot, x0);
-      for (int k = 0; k < 3; ++k) {
-        if (x[k] >= e.region.min[k] - 1e-9 && x[k] <= e.region.max[k] + 1e-9) continue;
-        char b[320];
-        std::snprintf(b, sizeof b,
-                      "drives the wall '%s' out of the domain (%c in [%.4g, %.4g] m) at t = %.4g s, where a corner of "
-                      "it reaches %c = %.4g m; enlarge the domain or let the motion end sooner",
-                      e.name.c_str(), axes[k], e.region.min[k], e.region.max[k], t, axes[k], x[k]);
-        throw InputError(c.source, e.line, e.key, b);
-      }
+      const std::string where = outside(p.place(e.pivot, x0), e.region);
+      if (where.empty()) continue;
+      char b[160];
+      std::snprintf(b, sizeof b, "drives the wall '%s' out of the domain at t = %.4g s (", e.name.c_str(), t);
+      throw InputError(c.source, e.line, e.key, b + where + "); enlarge the domain or let the motion end sooner");
     }
   }
+}
+
+// A free body's points as placed (absolute), those that bound it wherever it turns: its
+// particles (an SPH wall) or its mesh's vertices (a DEM wall).
+std::vector<Vec3d> wall_points(const sph::InitialState& init, const sph::MovingWall& m) {
+  std::vector<Vec3d> p;
+  for (std::uint32_t id = m.first; id < m.last; ++id) p.push_back(Vec3d(init.particles.pos[id]) + init.origin);
+  return p;
 }
 
 // A free body: its mass (given, or density x volume) and inertia about its centre of mass
@@ -112,6 +128,8 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
             w.is_mesh ? geometry::mesh_mass_properties(geometry::load_surface(w.mesh_path, false, c.domain))
                       : geometry::box_mass_properties(w.box),
             key + ".body");
+        b.points = wall_points(*init, m);
+        b.region = region;
       } else {
         b.law = std::make_unique<motion::Motion>(w.motion, motion::MotionContext{c.g(), c.source, key + ".motion"});
         check_stays_inside(c, *b.law,
@@ -139,6 +157,8 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
       const geometry::MassProperties mp = geometry::mesh_mass_properties(*mesh);
       b.pivot = mp.centroid;
       b.free = make_free_body(c, d.body, mp, key + ".body");
+      for (const auto& tri : mesh->tris) b.points.insert(b.points.end(), {tri.a, tri.b, tri.c});
+      b.region = c.domain;
     } else {
       const Box placed = mesh ? geometry::bounds(*mesh) : Box{d.point, d.point};
       b.pivot = motion::law_pivot(d.motion, placed);
@@ -148,6 +168,20 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
     bodies_.push_back(std::move(b));
   }
   dem_load_.assign(bodies_.size(), dem::WallLoadD{});
+}
+
+std::string MovingBodies::escaped() const {
+  for (const auto& b : bodies_) {
+    if (!b.free) continue;
+    const motion::Pose p = b.free->pose();
+    for (const Vec3d& x0 : b.points) {
+      const std::string where = outside(p.place(b.pivot, x0), b.region);
+      if (where.empty()) continue;
+      return "the free body '" + b.name + "' left the domain (" + where +
+             "; a body does not yet meet walls, so one heavier than water sinks through the floor)";
+    }
+  }
+  return {};
 }
 
 bool MovingBodies::any_free() const {

@@ -32,6 +32,11 @@ public:
   MovingBodies(const Case& c, const sph::InitialState* init);
   [[nodiscard]] bool any() const { return !bodies_.empty(); }
   [[nodiscard]] bool any_free() const;
+  // A free body that has left its region now (the domain grown by the wall layers for an
+  // SPH wall, the domain for a DEM mesh: beyond it the grid clamps and nothing is tested),
+  // any of its points (particles, mesh vertices) beyond it: the message naming it; empty
+  // while every free body is inside. A run stops on it (exit 3, the last output kept).
+  [[nodiscard]] std::string escaped() const;
   [[nodiscard]] std::size_t size() const { return bodies_.size(); }
   // The moving SPH walls: bodies [0, sph_count()).
   [[nodiscard]] std::size_t sph_count() const { return moving_.size(); }
@@ -78,6 +83,8 @@ private:
     Vec3d pivot{};        // as placed (absolute)
     bool touched = false; // some DEM wall moves with it: advanced at the DEM's steps
     Vec3d water_force{}, water_moment{};
+    std::vector<Vec3d> points; // a free body's points as placed (absolute): escaped
+    Box region;
   };
   std::vector<Body> bodies_;
   std::vector<sph::MovingWall> moving_;

@@ -99,10 +99,8 @@ public:
     if (!failure.empty()) {
       write_summary("diverged", 3, failure);
       if (root_)
-        std::fprintf(stderr,
-                     "error: %s\n  the last good output (t = %g s) is in %s; try a smaller sph.cfl or dem.dt_factor, "
-                     "or a finer dp\n",
-                     failure.c_str(), frame_times_.empty() ? 0.0 : frame_times_.back(), out_.string().c_str());
+        std::fprintf(stderr, "error: %s\n  the last good output (t = %g s) is in %s\n", failure.c_str(),
+                     frame_times_.empty() ? 0.0 : frame_times_.back(), out_.string().c_str());
       return 3;
     }
     const bool interrupted = stop_;

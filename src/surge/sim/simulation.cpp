@@ -254,6 +254,9 @@ int check(const Case& c) {
 
 namespace {
 
+// What a run that came apart numerically may try (the failures that are not a setup's).
+constexpr const char* kUnstable = "; try a smaller sph.cfl or dem.dt_factor, or a finer dp";
+
 // Water, and with DEM packs the spheres coupled to it, on one process or as one slab of a
 // distributed run.
 class SphStepper final : public Stepper {
@@ -335,17 +338,19 @@ public:
       m << "a DEM sphere has a non-finite position (try a smaller dem.dt_factor or sph.cfl)";
       failure = m.str();
     } else if (s.non_finite > 0) {
-      m << s.non_finite << " particles have non-finite position, velocity or density";
+      m << s.non_finite << " particles have non-finite position, velocity or density" << kUnstable;
       failure = m.str();
     } else if (static_cast<double>(tot_.removed.total()) > max_removed_ && init_.n_fluid > 0) {
       const Removals& r = tot_.removed;
       m << r.total() << " of " << init_.n_fluid
         << " fluid particles removed (limit sph.max_removed_share = " << c_.sph.max_removed_share << "; " << r.domain
-        << " left the domain, " << r.density << " density out of range)";
+        << " left the domain, " << r.density << " density out of range)" << kUnstable;
       failure = m.str();
     } else if (s.dt < dt_min_ && s.dt < dt_max * (1 - 1e-9)) {
-      m << "the time step fell to " << s.dt << " s, below time.dt_min = " << dt_min_ << " s";
+      m << "the time step fell to " << s.dt << " s, below time.dt_min = " << dt_min_ << " s" << kUnstable;
       failure = m.str();
+    } else if (const std::string e = bodies_.escaped(); !e.empty()) {
+      failure = m.str() + e;
     }
     return s.dt;
   }
