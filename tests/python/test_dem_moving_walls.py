@@ -3,7 +3,8 @@
 1. DEM only: cases/boulder_on_gravel.yaml's free block thrown onto gravel lands on the bed
    (it does not pass through it: its centre stays above the bed's top plus half its
    height, less 30 % for the spheres' overlap and its tilt) and a restart across the
-   impact continues bitwise (gauges, sphere frame, checkpoint with the body's state).
+   impact continues bitwise (gauges, sphere frame, checkpoint with the body's state);
+   thrown at 10 m/s it leaves the domain and the run stops (exit 3, naming it).
 2. Coupled, a gate seen by water and spheres: an SPH gate lifted at 1 m/s from 0.05 s and
    a DEM mesh of the same box that `follows` it hold a pile of spheres in water; no sphere
    reaches beyond the gate while it is shut, some do after it lifts, and a restart while
@@ -91,6 +92,14 @@ if out:
     check(lowest > 0.03 + 0.7 * 0.02, f"the block lands on the gravel and stays on it (lowest centre "
           f"{lowest:.4f} m; bed top 0.03 m, half height 0.02 m)")
     check(g["block_fz"][landed].max() > 0, "the spheres push the block up once it has landed")
+# Thrown at 10 m/s along the bed it leaves the domain through the front wall (bodies do
+# not meet walls yet): the run stops there, exit 3 naming it, the outputs kept.
+r = run("run", os.path.join(WORK, "boulder_on_gravel.yaml"), "--out", os.path.join(WORK, "boulder_thrown"),
+        "--set", "time.end=0.2", "--set", "dem.walls.5.body.velocity=[10,0,0]")
+g = np.genfromtxt(os.path.join(WORK, "boulder_thrown", "gauges.csv"), delimiter=",", names=True)
+check(r.returncode == 3 and "the free body 'block' left the domain (x in" in r.stderr and g["time"][-1] < 0.2,
+      f"a block thrown out of the domain stops the run, exit 3 naming it, gauges kept to {g['time'][-1]:.3f} s "
+      f"(exit {r.returncode}: {r.stderr[-200:]})")
 
 # 2. A gate lifted from a pile of spheres in water; the spheres see it through a DEM mesh.
 GATE = """name: gate_spheres

@@ -178,7 +178,7 @@ std::string MovingBodies::escaped() const {
       const std::string where = outside(p.place(b.pivot, x0), b.region);
       if (where.empty()) continue;
       return "the free body '" + b.name + "' left the domain (" + where +
-             "; a body does not yet meet walls, so one heavier than water sinks through the floor)";
+             "; bodies do not meet walls yet: one heavier than water sinks through the floor)";
     }
   }
   return {};
