@@ -141,6 +141,9 @@ if out:
 path = os.path.join(WORK, "sinking.yaml")
 open(path, "w").write(FREE.replace("density: 700", "density: 8000").format(end=0.5, boundary="mdbc", v=0))
 out = os.path.join(WORK, "sinking")
+r = subprocess.run([SURGE, "check", path, "--set", "dp=0.02"], capture_output=True, text=True)
+check("warning     the free body 'block' (8000 kg/m^3) is denser than the water" in r.stdout,
+      "surge check warns that the free block will sink through the floor")
 r = subprocess.run([SURGE, "run", path, "--out", out, "--quiet", "--set", "dp=0.02"], capture_output=True, text=True)
 s = json.load(open(os.path.join(out, "summary.json")))
 check(r.returncode == 3 and "the free body 'block' left the domain (z in" in r.stderr and s["status"] == "diverged",

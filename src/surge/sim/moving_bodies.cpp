@@ -123,11 +123,11 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
       b.name = w.name;
       b.pivot = m.pivot;
       if (w.body.free) {
-        b.free = make_free_body(
-            c, w.body,
+        const geometry::MassProperties mp =
             w.is_mesh ? geometry::mesh_mass_properties(geometry::load_surface(w.mesh_path, false, c.domain))
-                      : geometry::box_mass_properties(w.box),
-            key + ".body");
+                      : geometry::box_mass_properties(w.box);
+        b.free = make_free_body(c, w.body, mp, key + ".body");
+        b.volume = mp.volume;
         b.points = wall_points(*init, m);
         b.region = region;
       } else {
@@ -157,6 +157,7 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
       const geometry::MassProperties mp = geometry::mesh_mass_properties(*mesh);
       b.pivot = mp.centroid;
       b.free = make_free_body(c, d.body, mp, key + ".body");
+      b.volume = mp.volume;
       for (const auto& tri : mesh->tris) b.points.insert(b.points.end(), {tri.a, tri.b, tri.c});
       b.region = c.domain;
     } else {
@@ -296,10 +297,15 @@ void print_moving_walls(const Case& c, const MovingBodies& bodies) {
   for (std::size_t k = 0; k < bodies.sph_count(); ++k) {
     const auto& m = bodies.wall(k);
     if (const motion::FreeBody* f = bodies.free_body(k)) {
+      const WallSpec& w = c.walls[m.wall];
+      const bool rail = w.body.constraint == "line";
       std::printf("moving      wall '%s' (%u particles): a free body of %.4g kg (%s), centre of mass [%g, %g, %g] m\n",
-                  c.walls[m.wall].name.c_str(), m.last - m.first, f->mass(),
-                  c.walls[m.wall].body.constraint == "line" ? "along a line" : "6 degrees of freedom", m.pivot.x,
-                  m.pivot.y, m.pivot.z);
+                  w.name.c_str(), m.last - m.first, f->mass(), rail ? "along a line" : "6 degrees of freedom",
+                  m.pivot.x, m.pivot.y, m.pivot.z);
+      if (!rail && bodies.mean_density(k) > c.sph.rho0)
+        std::printf("warning     the free body '%s' (%.4g kg/m^3) is denser than the water (%.4g kg/m^3) and bodies do "
+                    "not meet walls yet: it will sink through the floor, and the run stops when it leaves the domain\n",
+                    w.name.c_str(), bodies.mean_density(k), c.sph.rho0);
       continue;
     }
     const motion::Pose end = bodies.pose(k, c.time.end);

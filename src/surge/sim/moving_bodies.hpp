@@ -45,6 +45,8 @@ public:
   // Body k's pose at t; a free body's pose now.
   [[nodiscard]] motion::Pose pose(std::size_t k, double t) const;
   [[nodiscard]] const motion::FreeBody* free_body(std::size_t k) const { return bodies_[k].free.get(); }
+  // Free body k's mass over its shape's volume.
+  [[nodiscard]] double mean_density(std::size_t k) const { return bodies_[k].free->mass() / bodies_[k].volume; }
   // Every body's state at t, in local coordinates.
   [[nodiscard]] std::vector<RigidState> states(double t) const;
 
@@ -84,6 +86,7 @@ private:
     bool touched = false; // some DEM wall moves with it: advanced at the DEM's steps
     Vec3d water_force{}, water_moment{};
     std::vector<Vec3d> points; // a free body's points as placed (absolute): escaped
+    double volume = 0;         // a free body's shape's
     Box region;
   };
   std::vector<Body> bodies_;
