@@ -14,11 +14,18 @@
 namespace surge::sim {
 
 namespace {
-// The bounding box of a moving wall's particles as placed (absolute).
-Box particle_bounds(const sph::InitialState& init, const sph::MovingWall& m) {
+// A moving wall's particles as placed (absolute): a free body's points that bound it
+// wherever it turns (for a DEM wall, its mesh's vertices), and a law's box (bounds).
+std::vector<Vec3d> wall_points(const sph::InitialState& init, const sph::MovingWall& m) {
+  std::vector<Vec3d> p;
+  for (std::uint32_t id = m.first; id < m.last; ++id) p.push_back(Vec3d(init.particles.pos[id]) + init.origin);
+  return p;
+}
+
+// The bounding box of points.
+Box bounds(const std::vector<Vec3d>& points) {
   Box b{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-  for (std::uint32_t id = m.first; id < m.last; ++id) {
-    const Vec3d x = Vec3d(init.particles.pos[id]) + init.origin;
+  for (const Vec3d& x : points) {
     for (int k = 0; k < 3; ++k) {
       b.min[k] = std::min(b.min[k], x[k]);
       b.max[k] = std::max(b.max[k], x[k]);
@@ -67,14 +74,6 @@ void check_stays_inside(const Case& c, const motion::Motion& mo, const Extent& e
       throw InputError(c.source, e.line, e.key, b + where + "); enlarge the domain or let the motion end sooner");
     }
   }
-}
-
-// A free body's points as placed (absolute), those that bound it wherever it turns: its
-// particles (an SPH wall) or its mesh's vertices (a DEM wall).
-std::vector<Vec3d> wall_points(const sph::InitialState& init, const sph::MovingWall& m) {
-  std::vector<Vec3d> p;
-  for (std::uint32_t id = m.first; id < m.last; ++id) p.push_back(Vec3d(init.particles.pos[id]) + init.origin);
-  return p;
 }
 
 // A free body: its mass (given, or density x volume) and inertia about its centre of mass
@@ -133,7 +132,7 @@ MovingBodies::MovingBodies(const Case& c, const sph::InitialState* init) : origi
       } else {
         b.law = std::make_unique<motion::Motion>(w.motion, motion::MotionContext{c.g(), c.source, key + ".motion"});
         check_stays_inside(c, *b.law,
-                           {w.name, key + ".motion", w.motion.line, m.pivot, particle_bounds(*init, m), region});
+                           {w.name, key + ".motion", w.motion.line, m.pivot, bounds(wall_points(*init, m)), region});
       }
       bodies_.push_back(std::move(b));
     }
